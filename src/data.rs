@@ -1,0 +1,127 @@
+//! Plain data at the boundary of the safe engine: what a caller gives ([`Input`]), what the engine
+//! returns ([`Output`], [`VoronoiOutput`]) and the per-call hooks ([`Hooks`]).
+//!
+//! Arrays are flat and row-major exactly as in Triangle's `struct triangulateio` (item `i` of width
+//! `w` at `[i*w .. i*w+w]`), and indices are in the caller's numbering (1-based unless `z`), so the
+//! C edge and the file readers and writers convert without reshaping.
+
+/// The caller's input, borrowed. Empty slices stand for NULL arrays.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Input<'a> {
+    /// x, y per point.
+    pub points: &'a [f64],
+    /// `point_attribute_count` values per point.
+    pub point_attributes: &'a [f64],
+    pub point_attribute_count: usize,
+    /// One marker per point, or `None` (all zero).
+    pub point_markers: Option<&'a [i32]>,
+    /// `corners` vertex indices per triangle (`r`).
+    pub triangles: &'a [i32],
+    pub corners: usize,
+    /// `triangle_attribute_count` values per triangle (`r`).
+    pub triangle_attributes: &'a [f64],
+    pub triangle_attribute_count: usize,
+    /// One maximum area per triangle (`r` with `a`), or `None`.
+    pub triangle_areas: Option<&'a [f64]>,
+    /// Two vertex indices per segment.
+    pub segments: &'a [i32],
+    /// One marker per segment, or `None` (all zero).
+    pub segment_markers: Option<&'a [i32]>,
+    /// x, y per hole.
+    pub holes: &'a [f64],
+    /// x, y, attribute, maximum area per region.
+    pub regions: &'a [f64],
+}
+
+impl Input<'_> {
+    pub fn point_count(&self) -> usize {
+        self.points.len() / 2
+    }
+    pub fn triangle_count(&self) -> usize {
+        if self.corners == 0 {
+            0
+        } else {
+            self.triangles.len() / self.corners
+        }
+    }
+    pub fn segment_count(&self) -> usize {
+        self.segments.len() / 2
+    }
+    pub fn hole_count(&self) -> usize {
+        self.holes.len() / 2
+    }
+    pub fn region_count(&self) -> usize {
+        self.regions.len() / 4
+    }
+}
+
+/// What the engine produced. `None` means "not written" (the switch that asks for it is absent,
+/// or a suppressing switch is present); the counts are always set, as Triangle sets them.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Output {
+    pub point_count: usize,
+    pub point_attribute_count: usize,
+    pub points: Option<Vec<f64>>,
+    pub point_attributes: Option<Vec<f64>>,
+    pub point_markers: Option<Vec<i32>>,
+
+    pub triangle_count: usize,
+    /// 3, or 6 with `o2`.
+    pub corners: usize,
+    pub triangle_attribute_count: usize,
+    pub triangles: Option<Vec<i32>>,
+    pub triangle_attributes: Option<Vec<f64>>,
+    pub neighbors: Option<Vec<i32>>,
+
+    pub segment_count: usize,
+    pub segments: Option<Vec<i32>>,
+    pub segment_markers: Option<Vec<i32>>,
+
+    /// Holes and regions are not copied: with `p` (and not `P`) the output aliases the input's
+    /// arrays, as Triangle does. These say how many items the aliases have.
+    pub hole_count: usize,
+    pub region_count: usize,
+    pub alias_holes_and_regions: bool,
+
+    pub edge_count: usize,
+    pub edges: Option<Vec<i32>>,
+    pub edge_markers: Option<Vec<i32>>,
+
+    /// Warnings (duplicate vertices, skipped segments, …), printed by the edge unless `Q`.
+    pub warnings: Vec<String>,
+}
+
+/// The Voronoi diagram (`v`). Counts are set even without `v` (Triangle does so when `vorout`
+/// is given); the arrays only with `v`.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct VoronoiOutput {
+    pub point_count: usize,
+    pub point_attribute_count: usize,
+    pub edge_count: usize,
+    /// Present only with `v`.
+    pub diagram: Option<VoronoiDiagram>,
+}
+
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct VoronoiDiagram {
+    /// One circumcentre per triangle (x, y), in output triangle order.
+    pub points: Vec<f64>,
+    /// Attributes interpolated at each circumcentre.
+    pub point_attributes: Vec<f64>,
+    /// Two indices per edge (caller's numbering); the second is −1 for a ray.
+    pub edges: Vec<i32>,
+    /// Ray directions; (0, 0) for finite edges.
+    pub norms: Vec<f64>,
+}
+
+/// The user's refinement test (`u`): arguments are org x, y, dest x, y, apex x, y and area;
+/// `true` means the triangle is unsuitable and must be split.
+pub type UnsuitableFn<'a> = dyn Fn(f64, f64, f64, f64, f64, f64, f64) -> bool + Sync + 'a;
+
+/// Per-call hooks: no global state.
+#[derive(Clone, Copy, Default)]
+pub struct Hooks<'a> {
+    pub unsuitable: Option<&'a UnsuitableFn<'a>>,
+    /// Polled during long work; `true` stops refinement early with a valid mesh.
+    pub cancel: Option<&'a (dyn Fn() -> bool + Sync + 'a)>,
+}

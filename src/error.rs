@@ -1,0 +1,67 @@
+//! Typed errors of the engine and of the input checks. The C edge turns them into a non-zero
+//! return code and a message kept for `triangulate_last_error`.
+
+use std::fmt;
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum Error {
+    /// A required pointer (`in`, `out`, `vorout` with `v`, or the switch string) is NULL.
+    NullArgument(&'static str),
+    /// A count field is negative or an array's size overflows.
+    BadCount { field: &'static str, value: i64 },
+    /// An array is NULL although its count says it has items.
+    MissingArray(&'static str),
+    /// Fewer than three input vertices.
+    TooFewPoints,
+    /// `a` with a number ≤ 0.
+    NonPositiveMaxArea,
+    /// A coordinate or attribute is NaN or infinite.
+    NonFinite { what: &'static str, index: usize },
+    /// A switch that this version does not implement.
+    Unsupported(&'static str),
+    /// `r`: a triangle needs at least three corners.
+    TooFewCorners(i64),
+    /// `r`: a triangle refers to a vertex that does not exist.
+    InvalidTriangleVertex { triangle: usize },
+    /// `r`: the given triangles do not form a valid mesh.
+    InvalidMesh(String),
+    /// The switch string is not valid UTF-8 / ASCII.
+    BadSwitches,
+    /// `malloc` returned NULL.
+    OutOfMemory,
+    /// Refinement was cancelled by the caller.
+    Cancelled,
+    /// A bug: an invariant of the engine failed (caught panic or failed check).
+    Internal(String),
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Error::NullArgument(name) => write!(f, "The argument `{name}` is NULL."),
+            Error::BadCount { field, value } => write!(f, "Invalid count {field} = {value}."),
+            Error::MissingArray(name) => {
+                write!(f, "The array `{name}` is NULL but its count is not zero.")
+            }
+            Error::TooFewPoints => write!(f, "Input must have at least three input vertices."),
+            Error::NonPositiveMaxArea => write!(f, "Maximum area must be greater than zero."),
+            Error::NonFinite { what, index } => {
+                write!(f, "{what} {index} has a coordinate or value that is not finite (NaN or infinity).")
+            }
+            Error::Unsupported(what) => write!(f, "{what} is not supported yet by triangle-rs."),
+            Error::TooFewCorners(n) => {
+                write!(f, "Triangles must have at least 3 vertices (numberofcorners = {n}).")
+            }
+            Error::InvalidTriangleVertex { triangle } => {
+                write!(f, "Triangle {triangle} has an invalid vertex index.")
+            }
+            Error::InvalidMesh(why) => write!(f, "The input mesh is not valid: {why}"),
+            Error::BadSwitches => write!(f, "The switch string is not valid ASCII text."),
+            Error::OutOfMemory => write!(f, "Out of memory."),
+            Error::Cancelled => write!(f, "Triangulation cancelled by the caller."),
+            Error::Internal(why) => write!(f, "Internal error in triangle-rs: {why}. Please report this bug."),
+        }
+    }
+}
+
+impl std::error::Error for Error {}

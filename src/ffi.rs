@@ -1,0 +1,242 @@
+//! The C ABI: Triangle 1.6's `triangulate`/`trifree`, Triangle_jll's `triangulate_catch_exit` and
+//! `triunsuitable_callback`, and triangle-rs's reentrant `triangulate_reentrant` and
+//! `triangulate_last_error`.
+//!
+//! This layer only converts and checks: it parses the switch string, borrows the input through
+//! [`crate::io::triangulateio`], runs the safe engine ([`crate::pipeline::triangulate`]) and writes
+//! the result back. No panic crosses it (`catch_unwind`), and nothing here calls `exit`.
+
+use std::cell::RefCell;
+use std::ffi::{CStr, CString};
+use std::os::raw::{c_char, c_int, c_void};
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::sync::atomic::{AtomicI32, AtomicPtr, Ordering};
+
+use crate::data::Hooks;
+use crate::error::Error;
+use crate::io::triangulateio::{input_from_raw, write_output, TriangulateIO};
+use crate::options::{Options, SwitchSource};
+use crate::pipeline;
+
+/// Triangulate.jl's callback: org x, y, dest x, y, apex x, y, area; non-zero = unsuitable.
+pub type TriunsuitableFn = extern "C" fn(f64, f64, f64, f64, f64, f64, f64) -> c_int;
+
+/// The reentrant callback: as [`TriunsuitableFn`] plus the caller's `user_data` pointer last.
+pub type TriunsuitableUserFn =
+    extern "C" fn(f64, f64, f64, f64, f64, f64, f64, *mut c_void) -> c_int;
+
+/// The callback set by `triunsuitable_callback` (Triangulate.jl's global setter). Each call of
+/// `triangulate` reads it once at its start, so a concurrent change never tears a running call.
+static GLOBAL_UNSUITABLE: AtomicPtr<c_void> = AtomicPtr::new(std::ptr::null_mut());
+
+thread_local! {
+    static LAST_ERROR: RefCell<CString> = RefCell::new(CString::default());
+}
+
+fn set_last_error(message: &str) {
+    let c = CString::new(message.replace('\0', " ")).unwrap_or_default();
+    LAST_ERROR.with(|slot| *slot.borrow_mut() = c);
+}
+
+/// A user pointer that may cross threads: the caller promises its callback is thread-safe.
+#[derive(Clone, Copy)]
+struct UserData(*mut c_void);
+// SAFETY: the pointer is only handed back to the caller's own callback, as the caller asked.
+unsafe impl Sync for UserData {}
+unsafe impl Send for UserData {}
+
+/// The body shared by every entry point.
+///
+/// # Safety
+/// As `triangulate`.
+unsafe fn run(
+    switches: *const c_char,
+    input: *mut TriangulateIO,
+    output: *mut TriangulateIO,
+    vorout: *mut TriangulateIO,
+    callback: Option<&(dyn Fn(f64, f64, f64, f64, f64, f64, f64) -> bool + Sync)>,
+    cancel: *const c_int,
+) -> Result<(), Error> {
+    if switches.is_null() {
+        return Err(Error::NullArgument("switches"));
+    }
+    // SAFETY: non-NULL and, by the C contract, a NUL-terminated string.
+    let text = unsafe { CStr::from_ptr(switches) }.to_str().map_err(|_| Error::BadSwitches)?;
+    let options = Options::parse(text, SwitchSource::Library)?;
+    let quiet = options.quiet;
+    let result = (|| {
+        if input.is_null() {
+            return Err(Error::NullArgument("in"));
+        }
+        if output.is_null() {
+            return Err(Error::NullArgument("out"));
+        }
+        if options.voronoi && vorout.is_null() {
+            return Err(Error::NullArgument("vorout"));
+        }
+        // SAFETY: non-NULL; the caller owns these structs for the duration of the call.
+        let in_ref: &TriangulateIO = unsafe { &*input };
+        let cancel_flag = if cancel.is_null() {
+            None
+        } else {
+            // SAFETY: non-NULL, aligned `int` that the caller keeps alive during the call;
+            // AtomicI32 has the layout of i32 and other threads only store into it.
+            Some(unsafe { AtomicI32::from_ptr(cancel as *mut i32) })
+        };
+        let is_cancelled = move || cancel_flag.is_some_and(|f| f.load(Ordering::Relaxed) != 0);
+        let hooks = Hooks { unsuitable: callback, cancel: Some(&is_cancelled) };
+        let result = {
+            // SAFETY: the arrays of `in` hold as many items as its counts say (C contract).
+            let engine_input = unsafe { input_from_raw(in_ref, &options)? };
+            pipeline::triangulate(&options, &engine_input, &hooks)?
+            // `engine_input` ends here, before anything is written: `out` may alias `in`.
+        };
+        let (mesh, voronoi) = result;
+        let in_copy = *in_ref;
+        // SAFETY: `out`/`vorout` are valid (checked non-NULL) and their non-NULL arrays are
+        // large enough (Triangle's contract).
+        unsafe {
+            let vor = if vorout.is_null() { None } else { Some((&voronoi, &mut *vorout)) };
+            write_output(&in_copy, &mesh, &mut *output, vor)?;
+        }
+        if !quiet {
+            for w in &mesh.warnings {
+                eprintln!("Warning: {w}");
+            }
+        }
+        Ok(())
+    })();
+    if let Err(e) = &result {
+        if !quiet {
+            eprintln!("triangle-rs: {e}");
+        }
+    }
+    result
+}
+
+/// Runs `run` behind `catch_unwind` and maps the result to Triangle_jll's return code.
+fn guarded(body: impl FnOnce() -> Result<(), Error>) -> c_int {
+    match catch_unwind(AssertUnwindSafe(body)) {
+        Ok(Ok(())) => {
+            set_last_error("");
+            0
+        }
+        Ok(Err(e)) => {
+            set_last_error(&e.to_string());
+            1
+        }
+        Err(panic) => {
+            let why = panic
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| panic.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "panic".into());
+            set_last_error(&Error::Internal(why).to_string());
+            2
+        }
+    }
+}
+
+fn global_callback() -> Option<TriunsuitableFn> {
+    let p = GLOBAL_UNSUITABLE.load(Ordering::Acquire);
+    if p.is_null() {
+        None
+    } else {
+        // SAFETY: only `triunsuitable_callback` stores here, and it stores a TriunsuitableFn.
+        Some(unsafe { std::mem::transmute::<*mut c_void, TriunsuitableFn>(p) })
+    }
+}
+
+/// Triangulates, meshes or refines as Triangle 1.6 does. Returns 0 on success; on failure a
+/// non-zero code, with the message available from `triangulate_last_error`.
+///
+/// # Safety
+/// `switches` is a NUL-terminated string; `in`, `out` and (with `v`) `vorout` point to valid
+/// structs whose arrays hold as many items as their counts say; non-NULL output arrays are
+/// large enough for what Triangle would write there.
+#[no_mangle]
+pub unsafe extern "C" fn triangulate(
+    switches: *const c_char,
+    r#in: *mut TriangulateIO,
+    out: *mut TriangulateIO,
+    vorout: *mut TriangulateIO,
+) -> c_int {
+    let callback = global_callback();
+    let test = move |ox, oy, dx, dy, ax, ay, area| callback.is_some_and(|f| f(ox, oy, dx, dy, ax, ay, area) != 0);
+    let callback_ref: Option<&(dyn Fn(f64, f64, f64, f64, f64, f64, f64) -> bool + Sync)> =
+        if callback.is_some() { Some(&test) } else { None };
+    // SAFETY: the caller's contract is this function's.
+    guarded(|| unsafe { run(switches, r#in, out, vorout, callback_ref, std::ptr::null()) })
+}
+
+/// The same call under the name Triangulate.jl uses (Triangle_jll's setjmp wrapper): 0 on
+/// success, 1 on error. triangle-rs never exits, so no setjmp is needed.
+///
+/// # Safety
+/// As [`triangulate`].
+#[no_mangle]
+pub unsafe extern "C" fn triangulate_catch_exit(
+    switches: *const c_char,
+    r#in: *mut TriangulateIO,
+    out: *mut TriangulateIO,
+    vorout: *mut TriangulateIO,
+) -> c_int {
+    // SAFETY: same contract.
+    match unsafe { triangulate(switches, r#in, out, vorout) } {
+        0 => 0,
+        _ => 1,
+    }
+}
+
+/// Reentrant triangulation: the `u` test is `unsuitable` (called with `user_data` last) for this
+/// call only, and refinement stops early with a valid mesh once `*cancel` becomes non-zero (set it
+/// from another thread with an atomic or volatile store; `cancel` may be NULL). No global state.
+///
+/// # Safety
+/// As [`triangulate`]; `cancel` is NULL or points to an aligned `int` that outlives the call;
+/// `unsuitable` may be called from this thread only, with `user_data` as given.
+#[no_mangle]
+pub unsafe extern "C" fn triangulate_reentrant(
+    switches: *const c_char,
+    r#in: *mut TriangulateIO,
+    out: *mut TriangulateIO,
+    vorout: *mut TriangulateIO,
+    unsuitable: Option<TriunsuitableUserFn>,
+    user_data: *mut c_void,
+    cancel: *const c_int,
+) -> c_int {
+    let data = UserData(user_data);
+    let test = move |ox, oy, dx, dy, ax, ay, area| {
+        let data = data;
+        unsuitable.is_some_and(|f| f(ox, oy, dx, dy, ax, ay, area, data.0) != 0)
+    };
+    let callback_ref: Option<&(dyn Fn(f64, f64, f64, f64, f64, f64, f64) -> bool + Sync)> =
+        if unsuitable.is_some() { Some(&test) } else { None };
+    // SAFETY: the caller's contract is this function's.
+    guarded(|| unsafe { run(switches, r#in, out, vorout, callback_ref, cancel) })
+}
+
+/// Frees an array that `triangulate` allocated (libc `free`). NULL is ignored.
+///
+/// # Safety
+/// `memptr` is NULL or a pointer returned by this library's allocation and not freed yet.
+#[no_mangle]
+pub unsafe extern "C" fn trifree(memptr: *mut c_void) {
+    // SAFETY: the caller passes a pointer from libc malloc (or NULL).
+    unsafe { libc::free(memptr) }
+}
+
+/// Sets the process-wide `u` callback (Triangulate.jl's `triunsuitable!`). NULL clears it.
+/// Prefer `triangulate_reentrant`, which takes the callback per call.
+#[no_mangle]
+pub extern "C" fn triunsuitable_callback(f: Option<TriunsuitableFn>) {
+    let p = f.map_or(std::ptr::null_mut(), |f| f as *mut c_void);
+    GLOBAL_UNSUITABLE.store(p, Ordering::Release);
+}
+
+/// The message of the last failed call on this thread ("" after a success). The pointer stays
+/// valid until the next call on this thread.
+#[no_mangle]
+pub extern "C" fn triangulate_last_error() -> *const c_char {
+    LAST_ERROR.with(|slot| slot.borrow().as_ptr())
+}

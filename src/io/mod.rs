@@ -1,0 +1,3 @@
+//! Conversion between the engine's plain data and the outside world.
+
+pub mod triangulateio;

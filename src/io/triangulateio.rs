@@ -1,0 +1,323 @@
+//! `struct triangulateio`, field for field, and its conversion to and from the engine's plain data.
+//!
+//! Reading checks every count and pointer the switches make Triangle read; writing follows
+//! Triangle's memory rules: an output array is `malloc`ed only when its pointer is NULL (a
+//! non-NULL pointer is the caller's buffer, written into unchecked as Triangle does), and
+//! `holelist`/`regionlist` alias the input's arrays.
+
+use std::os::raw::{c_int, c_void};
+use std::ptr;
+
+use crate::data::{Input, Output, VoronoiOutput};
+use crate::error::Error;
+use crate::options::Options;
+
+/// Triangle 1.6's `struct triangulateio` (168 bytes on LP64 and LLP64).
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct TriangulateIO {
+    pub pointlist: *mut f64,
+    pub pointattributelist: *mut f64,
+    pub pointmarkerlist: *mut c_int,
+    pub numberofpoints: c_int,
+    pub numberofpointattributes: c_int,
+
+    pub trianglelist: *mut c_int,
+    pub triangleattributelist: *mut f64,
+    pub trianglearealist: *mut f64,
+    pub neighborlist: *mut c_int,
+    pub numberoftriangles: c_int,
+    pub numberofcorners: c_int,
+    pub numberoftriangleattributes: c_int,
+
+    pub segmentlist: *mut c_int,
+    pub segmentmarkerlist: *mut c_int,
+    pub numberofsegments: c_int,
+
+    pub holelist: *mut f64,
+    pub numberofholes: c_int,
+
+    pub regionlist: *mut f64,
+    pub numberofregions: c_int,
+
+    pub edgelist: *mut c_int,
+    pub edgemarkerlist: *mut c_int,
+    pub normlist: *mut f64,
+    pub numberofedges: c_int,
+}
+
+impl Default for TriangulateIO {
+    fn default() -> Self {
+        TriangulateIO {
+            pointlist: ptr::null_mut(),
+            pointattributelist: ptr::null_mut(),
+            pointmarkerlist: ptr::null_mut(),
+            numberofpoints: 0,
+            numberofpointattributes: 0,
+            trianglelist: ptr::null_mut(),
+            triangleattributelist: ptr::null_mut(),
+            trianglearealist: ptr::null_mut(),
+            neighborlist: ptr::null_mut(),
+            numberoftriangles: 0,
+            numberofcorners: 0,
+            numberoftriangleattributes: 0,
+            segmentlist: ptr::null_mut(),
+            segmentmarkerlist: ptr::null_mut(),
+            numberofsegments: 0,
+            holelist: ptr::null_mut(),
+            numberofholes: 0,
+            regionlist: ptr::null_mut(),
+            numberofregions: 0,
+            edgelist: ptr::null_mut(),
+            edgemarkerlist: ptr::null_mut(),
+            normlist: ptr::null_mut(),
+            numberofedges: 0,
+        }
+    }
+}
+
+fn count(field: &'static str, value: c_int) -> Result<usize, Error> {
+    usize::try_from(value).map_err(|_| Error::BadCount { field, value: value as i64 })
+}
+
+fn product(field: &'static str, items: usize, width: usize) -> Result<usize, Error> {
+    items
+        .checked_mul(width)
+        .filter(|&n| n <= isize::MAX as usize / 8)
+        .ok_or(Error::BadCount { field, value: items as i64 })
+}
+
+/// A required array of `len` items: NULL is an error unless `len` is 0.
+///
+/// # Safety
+/// `p` must be NULL or valid for reads of `len` items for `'a`.
+unsafe fn required<'a, T>(name: &'static str, p: *const T, len: usize) -> Result<&'a [T], Error> {
+    if len == 0 {
+        Ok(&[])
+    } else if p.is_null() {
+        Err(Error::MissingArray(name))
+    } else {
+        // SAFETY: non-NULL and, by the caller's contract, valid for `len` reads.
+        Ok(unsafe { std::slice::from_raw_parts(p, len) })
+    }
+}
+
+/// An optional array of `len` items: NULL gives `None`.
+///
+/// # Safety
+/// As [`required`].
+unsafe fn optional<'a, T>(p: *const T, len: usize) -> Option<&'a [T]> {
+    if p.is_null() {
+        None
+    } else if len == 0 {
+        Some(&[])
+    } else {
+        // SAFETY: non-NULL and, by the caller's contract, valid for `len` reads.
+        Some(unsafe { std::slice::from_raw_parts(p, len) })
+    }
+}
+
+/// Borrows the arrays of `tio` that the switches make the engine read, checking counts and
+/// pointers.
+///
+/// # Safety
+/// Every non-NULL array of `tio` that is read must hold as many items as its count says.
+pub unsafe fn input_from_raw<'a>(tio: &'a TriangulateIO, options: &Options) -> Result<Input<'a>, Error> {
+    let n = count("numberofpoints", tio.numberofpoints)?;
+    let nattr = count("numberofpointattributes", tio.numberofpointattributes)?;
+    let mut input = Input {
+        // SAFETY (all reads below): the caller's contract above.
+        points: unsafe { required("pointlist", tio.pointlist, product("numberofpoints", n, 2)?)? },
+        point_attributes: unsafe {
+            required("pointattributelist", tio.pointattributelist, product("numberofpointattributes", n, nattr)?)?
+        },
+        point_attribute_count: nattr,
+        point_markers: unsafe { optional(tio.pointmarkerlist, n) },
+        ..Input::default()
+    };
+    if options.refine {
+        let ntri = count("numberoftriangles", tio.numberoftriangles)?;
+        if tio.numberofcorners < 3 {
+            return Err(Error::TooFewCorners(tio.numberofcorners as i64));
+        }
+        let corners = count("numberofcorners", tio.numberofcorners)?;
+        let ntattr = count("numberoftriangleattributes", tio.numberoftriangleattributes)?;
+        input.corners = corners;
+        input.triangles =
+            unsafe { required("trianglelist", tio.trianglelist, product("numberoftriangles", ntri, corners)?)? };
+        input.triangle_attribute_count = ntattr;
+        input.triangle_attributes = unsafe {
+            required(
+                "triangleattributelist",
+                tio.triangleattributelist,
+                product("numberoftriangleattributes", ntri, ntattr)?,
+            )?
+        };
+        if options.variable_area {
+            input.triangle_areas = Some(unsafe { required("trianglearealist", tio.trianglearealist, ntri)? });
+        }
+    }
+    if options.pslg {
+        let nseg = count("numberofsegments", tio.numberofsegments)?;
+        input.segments = unsafe { required("segmentlist", tio.segmentlist, product("numberofsegments", nseg, 2)?)? };
+        input.segment_markers = unsafe { optional(tio.segmentmarkerlist, nseg) };
+        if !options.refine {
+            let nholes = count("numberofholes", tio.numberofholes)?;
+            let nregions = count("numberofregions", tio.numberofregions)?;
+            input.holes = unsafe { required("holelist", tio.holelist, product("numberofholes", nholes, 2)?)? };
+            input.regions =
+                unsafe { required("regionlist", tio.regionlist, product("numberofregions", nregions, 4)?)? };
+        }
+    }
+    Ok(input)
+}
+
+fn to_c_int(field: &'static str, value: usize) -> Result<c_int, Error> {
+    c_int::try_from(value).map_err(|_| Error::BadCount { field, value: value as i64 })
+}
+
+/// One array to hand to the caller: the destination field and the data.
+struct Transfer<'a> {
+    field: *mut *mut c_void,
+    bytes: &'a [u8],
+}
+
+fn as_bytes<T: Copy>(v: &[T]) -> &[u8] {
+    // SAFETY: T is a plain number type (f64 or c_int) with no padding; the byte view covers
+    // exactly the slice's memory and lives as long as it.
+    unsafe { std::slice::from_raw_parts(v.as_ptr() as *const u8, std::mem::size_of_val(v)) }
+}
+
+/// Copies every array into its field: into the caller's buffer when the field is non-NULL,
+/// else into a new `malloc`ed one. If an allocation fails, everything allocated here is freed
+/// again and the fields are left as they were.
+///
+/// # Safety
+/// Each non-NULL destination field must point to a buffer large enough for its data, and each
+/// `field` pointer must be valid for reads and writes.
+unsafe fn transfer_all(transfers: &[Transfer<'_>]) -> Result<(), Error> {
+    let mut fresh: Vec<(*mut *mut c_void, *mut c_void)> = Vec::new();
+    for t in transfers {
+        // SAFETY: `field` points into a live TriangulateIO (caller's contract).
+        if unsafe { (*t.field).is_null() } {
+            // malloc(0) may return NULL; ask for at least one byte so that a written array is
+            // always a non-NULL pointer the caller can free().
+            // SAFETY: plain libc allocation.
+            let p = unsafe { libc::malloc(t.bytes.len().max(1)) };
+            if p.is_null() {
+                for (field, p) in fresh {
+                    // SAFETY: `p` was allocated above and not yet handed out; `field` is live.
+                    unsafe {
+                        libc::free(p);
+                        *field = ptr::null_mut();
+                    }
+                }
+                return Err(Error::OutOfMemory);
+            }
+            // SAFETY: the field is live; we own `p` until the caller takes it.
+            unsafe { *t.field = p };
+            fresh.push((t.field, p));
+        }
+    }
+    for t in transfers {
+        // SAFETY: the destination is either our new allocation of this size or the caller's
+        // buffer, which the caller promises is large enough; the source is a Rust slice that
+        // does not overlap either.
+        unsafe { ptr::copy_nonoverlapping(t.bytes.as_ptr(), *t.field as *mut u8, t.bytes.len()) };
+    }
+    Ok(())
+}
+
+macro_rules! field_ptr {
+    ($tio:expr, $field:ident) => {
+        (&mut $tio.$field) as *mut _ as *mut *mut c_void
+    };
+}
+
+/// Writes the engine's output into `out` (and `vorout` when given), following Triangle's rules.
+///
+/// # Safety
+/// `out` and `vorout` must be valid; their non-NULL array fields must be large enough for what
+/// is written into them; `input` is the struct the input was read from (its hole and region
+/// pointers are aliased into `out`).
+pub unsafe fn write_output(
+    input: &TriangulateIO,
+    output: &Output,
+    out: &mut TriangulateIO,
+    voronoi: Option<(&VoronoiOutput, &mut TriangulateIO)>,
+) -> Result<(), Error> {
+    let mut transfers: Vec<Transfer<'_>> = Vec::new();
+    macro_rules! push {
+        ($tio:expr, $field:ident, $data:expr) => {
+            if let Some(d) = $data {
+                transfers.push(Transfer { field: field_ptr!($tio, $field), bytes: as_bytes(d) });
+            }
+        };
+    }
+    push!(out, pointlist, output.points.as_deref());
+    push!(out, pointattributelist, output.point_attributes.as_deref());
+    push!(out, pointmarkerlist, output.point_markers.as_deref());
+    push!(out, trianglelist, output.triangles.as_deref());
+    push!(out, triangleattributelist, output.triangle_attributes.as_deref());
+    push!(out, neighborlist, output.neighbors.as_deref());
+    push!(out, segmentlist, output.segments.as_deref());
+    push!(out, segmentmarkerlist, output.segment_markers.as_deref());
+    push!(out, edgelist, output.edges.as_deref());
+    push!(out, edgemarkerlist, output.edge_markers.as_deref());
+
+    let counts = (
+        to_c_int("numberofpoints", output.point_count)?,
+        to_c_int("numberofpointattributes", output.point_attribute_count)?,
+        to_c_int("numberoftriangles", output.triangle_count)?,
+        to_c_int("numberofcorners", output.corners)?,
+        to_c_int("numberoftriangleattributes", output.triangle_attribute_count)?,
+        to_c_int("numberofsegments", output.segment_count)?,
+        to_c_int("numberofholes", output.hole_count)?,
+        to_c_int("numberofregions", output.region_count)?,
+        to_c_int("numberofedges", output.edge_count)?,
+    );
+
+    let mut vorout_fields = None;
+    if let Some((vor, vorout)) = voronoi {
+        let vor_counts = (
+            to_c_int("numberofpoints", vor.point_count)?,
+            to_c_int("numberofpointattributes", vor.point_attribute_count)?,
+            to_c_int("numberofedges", vor.edge_count)?,
+        );
+        if let Some(d) = &vor.diagram {
+            push!(vorout, pointlist, Some(&d.points[..]));
+            push!(vorout, pointattributelist, Some(&d.point_attributes[..]));
+            push!(vorout, edgelist, Some(&d.edges[..]));
+            push!(vorout, normlist, Some(&d.norms[..]));
+        }
+        vorout_fields = Some((vorout, vor_counts, vor.diagram.is_some()));
+    }
+    // SAFETY: the fields point into `out`/`vorout`, live for this call; buffer sizes are the
+    // caller's contract.
+    unsafe { transfer_all(&transfers)? };
+
+    if let Some((vorout, (np, na, ne), written)) = vorout_fields {
+        vorout.numberofpoints = np;
+        vorout.numberofpointattributes = na;
+        vorout.numberofedges = ne;
+        if written {
+            // Triangle sets these two to NULL explicitly with `v`.
+            vorout.pointmarkerlist = ptr::null_mut();
+            vorout.edgemarkerlist = ptr::null_mut();
+        }
+    }
+    out.numberofpoints = counts.0;
+    out.numberofpointattributes = counts.1;
+    out.numberoftriangles = counts.2;
+    out.numberofcorners = counts.3;
+    out.numberoftriangleattributes = counts.4;
+    out.numberofsegments = counts.5;
+    out.numberofholes = counts.6;
+    out.numberofregions = counts.7;
+    out.numberofedges = counts.8;
+    if output.alias_holes_and_regions {
+        out.holelist = input.holelist;
+        out.regionlist = input.regionlist;
+    }
+    Ok(())
+}
