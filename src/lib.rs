@@ -10,6 +10,7 @@
 //! - [`io`]: `struct triangulateio` conversion (and file formats);
 //! - [`ffi`]: the C ABI.
 
+pub mod assemble;
 pub mod data;
 pub mod delaunay;
 pub mod error;

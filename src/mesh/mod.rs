@@ -1,1 +1,230 @@
-//! stub
+//! The triangle mesh: topology in flat arrays with `u32` indices.
+//!
+//! Triangle `t` owns the three half-edges `3t`, `3t+1`, `3t+2`. Half-edge `e` starts at corner
+//! `e % 3` of its triangle and ends at the next corner; triangles are counter-clockwise, so each
+//! triangle lies to the left of its half-edges. `twins[e]` is the opposite half-edge in the
+//! neighbouring triangle.
+//!
+//! The outside of the triangulation is covered with *ghost* triangles that share the vertex at
+//! infinity, [`GHOST`]: every hull edge has a real triangle on one side and a ghost on the other,
+//! so every half-edge has a twin and insertion outside the hull needs no special case (the ghost
+//! "circumcircle" is the open half-plane beyond its hull edge).
+
+use crate::geometry::Point;
+
+/// The vertex at infinity, a corner of every ghost triangle.
+pub const GHOST: u32 = u32::MAX;
+/// "No half-edge / no triangle".
+pub const NONE: u32 = u32::MAX;
+
+/// The half-edge after `e` in its triangle (counter-clockwise).
+#[inline(always)]
+pub fn next(e: u32) -> u32 {
+    if e % 3 == 2 {
+        e - 2
+    } else {
+        e + 1
+    }
+}
+
+/// The half-edge before `e` in its triangle.
+#[inline(always)]
+pub fn prev(e: u32) -> u32 {
+    if e % 3 == 0 {
+        e + 2
+    } else {
+        e - 1
+    }
+}
+
+/// The triangle that owns half-edge `e`.
+#[inline(always)]
+pub fn triangle_of(e: u32) -> u32 {
+    e / 3
+}
+
+#[derive(Clone, Debug, Default)]
+pub struct Mesh {
+    /// Vertex coordinates; the index is the vertex id.
+    pub points: Vec<Point>,
+    /// Corner `i` of triangle `t` at `corners[3t + i]` (the origin of half-edge `3t + i`).
+    pub corners: Vec<u32>,
+    /// The twin of each half-edge.
+    pub twins: Vec<u32>,
+}
+
+impl Mesh {
+    pub fn with_points(points: Vec<Point>) -> Mesh {
+        let capacity = 3 * (2 * points.len() + 2);
+        Mesh { points, corners: Vec::with_capacity(capacity), twins: Vec::with_capacity(capacity) }
+    }
+
+    /// Number of triangle slots (real and ghost).
+    #[inline(always)]
+    pub fn triangle_count(&self) -> u32 {
+        (self.corners.len() / 3) as u32
+    }
+
+    #[inline(always)]
+    pub fn origin(&self, e: u32) -> u32 {
+        self.corners[e as usize]
+    }
+
+    #[inline(always)]
+    pub fn dest(&self, e: u32) -> u32 {
+        self.corners[next(e) as usize]
+    }
+
+    /// The corner opposite half-edge `e` in its triangle.
+    #[inline(always)]
+    pub fn apex(&self, e: u32) -> u32 {
+        self.corners[prev(e) as usize]
+    }
+
+    #[inline(always)]
+    pub fn twin(&self, e: u32) -> u32 {
+        self.twins[e as usize]
+    }
+
+    #[inline(always)]
+    pub fn point(&self, v: u32) -> Point {
+        self.points[v as usize]
+    }
+
+    /// The three corners of triangle `t`.
+    #[inline(always)]
+    pub fn triangle(&self, t: u32) -> [u32; 3] {
+        let i = 3 * t as usize;
+        [self.corners[i], self.corners[i + 1], self.corners[i + 2]]
+    }
+
+    #[inline(always)]
+    pub fn is_ghost(&self, t: u32) -> bool {
+        let [a, b, c] = self.triangle(t);
+        a == GHOST || b == GHOST || c == GHOST
+    }
+
+    #[inline(always)]
+    fn link(&mut self, a: u32, b: u32) {
+        self.twins[a as usize] = b;
+        self.twins[b as usize] = a;
+    }
+
+    /// Appends a triangle with the given corners and unset twins; returns its index.
+    #[inline(always)]
+    pub fn add_triangle(&mut self, a: u32, b: u32, c: u32) -> u32 {
+        let t = self.triangle_count();
+        self.corners.extend_from_slice(&[a, b, c]);
+        self.twins.extend_from_slice(&[NONE, NONE, NONE]);
+        t
+    }
+
+    #[inline(always)]
+    fn set_triangle(&mut self, t: u32, a: u32, b: u32, c: u32) {
+        let i = 3 * t as usize;
+        self.corners[i] = a;
+        self.corners[i + 1] = b;
+        self.corners[i + 2] = c;
+    }
+
+    /// Starts a triangulation with the counter-clockwise triangle `(a, b, c)` and the three
+    /// ghosts around it. Returns the real triangle.
+    pub fn init_triangle(&mut self, a: u32, b: u32, c: u32) -> u32 {
+        let t = self.add_triangle(a, b, c);
+        let gab = self.add_triangle(b, a, GHOST);
+        let gbc = self.add_triangle(c, b, GHOST);
+        let gca = self.add_triangle(a, c, GHOST);
+        self.link(3 * t, 3 * gab);
+        self.link(3 * t + 1, 3 * gbc);
+        self.link(3 * t + 2, 3 * gca);
+        self.link(3 * gab + 1, 3 * gca + 2);
+        self.link(3 * gab + 2, 3 * gbc + 1);
+        self.link(3 * gbc + 2, 3 * gca + 1);
+        t
+    }
+
+    /// Splits triangle `t = (a, b, c)` at the new vertex `p` into `(a, b, p)`, `(b, c, p)` and
+    /// `(c, a, p)`. In each of the three, half-edge slot 0 is the edge opposite `p`. Returns the
+    /// three triangles. Works for ghosts too (a point beyond a hull edge splits its ghost).
+    pub fn split_triangle(&mut self, t: u32, p: u32) -> [u32; 3] {
+        let [a, b, c] = self.triangle(t);
+        let (tw_ab, tw_bc, tw_ca) = (self.twin(3 * t), self.twin(3 * t + 1), self.twin(3 * t + 2));
+        self.set_triangle(t, a, b, p);
+        let t1 = self.add_triangle(b, c, p);
+        let t2 = self.add_triangle(c, a, p);
+        self.link(3 * t, tw_ab);
+        self.link(3 * t1, tw_bc);
+        self.link(3 * t2, tw_ca);
+        self.link(3 * t + 1, 3 * t1 + 2);
+        self.link(3 * t1 + 1, 3 * t2 + 2);
+        self.link(3 * t2 + 1, 3 * t + 2);
+        [t, t1, t2]
+    }
+
+    /// Splits the edge of half-edge `e` (from `a` to `b`) at the new vertex `p`, which lies on it.
+    /// The two triangles `(a, b, c)` and `(b, a, d)` become four, each with half-edge slot 0
+    /// opposite `p`: `(c, a, p)`, `(b, c, p)`, `(a, d, p)`, `(d, b, p)`. Returned in that order.
+    pub fn split_edge(&mut self, e: u32, p: u32) -> [u32; 4] {
+        let f = self.twin(e);
+        let (t1, t2) = (triangle_of(e), triangle_of(f));
+        let (a, b, c, d) = (self.origin(e), self.dest(e), self.apex(e), self.apex(f));
+        let (tw_bc, tw_ca) = (self.twin(next(e)), self.twin(prev(e)));
+        let (tw_ad, tw_db) = (self.twin(next(f)), self.twin(prev(f)));
+        self.set_triangle(t1, c, a, p);
+        self.set_triangle(t2, b, c, p);
+        let t3 = self.add_triangle(a, d, p);
+        let t4 = self.add_triangle(d, b, p);
+        self.link(3 * t1, tw_ca);
+        self.link(3 * t2, tw_bc);
+        self.link(3 * t3, tw_ad);
+        self.link(3 * t4, tw_db);
+        self.link(3 * t1 + 1, 3 * t3 + 2); // a-p
+        self.link(3 * t1 + 2, 3 * t2 + 1); // p-c
+        self.link(3 * t2 + 2, 3 * t4 + 1); // p-b
+        self.link(3 * t3 + 1, 3 * t4 + 2); // d-p
+        [t1, t2, t3, t4]
+    }
+
+    /// Flips the edge of half-edge `e`, whose triangle is `(a, b, p)` with `e` from `a` to `b`,
+    /// against its twin's triangle `(b, a, q)`. Afterwards the two triangles are `(a, q, p)` and
+    /// `(q, b, p)`, each with half-edge slot 0 opposite `p` (the edges `a-q` and `q-b`).
+    /// Returns the two triangles, first the one that held `e`.
+    pub fn flip(&mut self, e: u32) -> [u32; 2] {
+        let f = self.twin(e);
+        let (t1, t2) = (triangle_of(e), triangle_of(f));
+        let (a, b, p, q) = (self.origin(e), self.dest(e), self.apex(e), self.apex(f));
+        let (tw_bp, tw_pa) = (self.twin(next(e)), self.twin(prev(e)));
+        let (tw_aq, tw_qb) = (self.twin(next(f)), self.twin(prev(f)));
+        self.set_triangle(t1, a, q, p);
+        self.set_triangle(t2, q, b, p);
+        self.link(3 * t1, tw_aq);
+        self.link(3 * t1 + 2, tw_pa);
+        self.link(3 * t2, tw_qb);
+        self.link(3 * t2 + 1, tw_bp);
+        self.link(3 * t1 + 1, 3 * t2 + 2);
+        [t1, t2]
+    }
+
+    /// Iterates the real (non-ghost) triangles.
+    pub fn real_triangles(&self) -> impl Iterator<Item = u32> + '_ {
+        (0..self.triangle_count()).filter(move |&t| !self.is_ghost(t))
+    }
+
+    /// Checks the topological invariants (twins are mutual and join the same two vertices in
+    /// opposite directions). Used by tests and the `C` switch.
+    pub fn check_topology(&self) -> Result<(), String> {
+        for e in 0..self.corners.len() as u32 {
+            let f = self.twin(e);
+            if f == NONE || f as usize >= self.twins.len() {
+                return Err(format!("half-edge {e} has no twin"));
+            }
+            if self.twin(f) != e {
+                return Err(format!("twins of {e} and {f} are not mutual"));
+            }
+            if self.origin(e) != self.dest(f) || self.dest(e) != self.origin(f) {
+                return Err(format!("half-edges {e} and {f} do not join the same vertices"));
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,127 @@
+//! Insertion orders for incremental Delaunay triangulation.
+//!
+//! Inserting points along a Hilbert curve keeps consecutive points close, so the walk that
+//! locates each point is short and its memory accesses hit the cache (PERFORMANCE-NOTES.md). The
+//! randomized order of `i` is the biased randomized insertion order (BRIO) of Amenta, Choi and
+//! Rote, "Incremental constructions con BRIO" (2003): random rounds of doubling size, each round in
+//! Hilbert order, which keeps the expected O(n log n) bound of randomized insertion.
+
+use crate::geometry::Point;
+
+const HILBERT_BITS: u32 = 16;
+
+/// Position of cell `(x, y)` along the Hilbert curve filling a `2^HILBERT_BITS` square grid.
+fn hilbert_index(mut x: u32, mut y: u32) -> u32 {
+    let n: u32 = 1 << HILBERT_BITS;
+    let mut d: u32 = 0;
+    let mut s = n / 2;
+    while s > 0 {
+        let rx = (x & s) != 0;
+        let ry = (y & s) != 0;
+        d = d.wrapping_add(s.wrapping_mul(s).wrapping_mul((3 * rx as u32) ^ ry as u32));
+        // Rotate the quadrant so that the curve's sub-square is in standard position.
+        if !ry {
+            if rx {
+                x = n - 1 - x;
+                y = n - 1 - y;
+            }
+            std::mem::swap(&mut x, &mut y);
+        }
+        s /= 2;
+    }
+    d
+}
+
+/// Hilbert-curve key of every point, over the points' bounding box.
+fn hilbert_keys(points: &[Point]) -> Vec<u32> {
+    let (mut xmin, mut ymin, mut xmax, mut ymax) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
+    for p in points {
+        xmin = xmin.min(p[0]);
+        xmax = xmax.max(p[0]);
+        ymin = ymin.min(p[1]);
+        ymax = ymax.max(p[1]);
+    }
+    let cells = ((1u32 << HILBERT_BITS) - 1) as f64;
+    let scale_x = if xmax > xmin { cells / (xmax - xmin) } else { 0.0 };
+    let scale_y = if ymax > ymin { cells / (ymax - ymin) } else { 0.0 };
+    points
+        .iter()
+        .map(|p| {
+            let x = ((p[0] - xmin) * scale_x) as u32;
+            let y = ((p[1] - ymin) * scale_y) as u32;
+            hilbert_index(x.min(cells as u32), y.min(cells as u32))
+        })
+        .collect()
+}
+
+/// All point indices in Hilbert-curve order. Among points with equal keys the later input point
+/// comes first, so of two duplicate points the later one is inserted and survives, as in Triangle.
+pub fn hilbert_order(points: &[Point]) -> Vec<u32> {
+    let mut keyed: Vec<u64> =
+        hilbert_keys(points).into_iter().enumerate().map(|(i, k)| (u64::from(k) << 32) | u64::from(!(i as u32))).collect();
+    keyed.sort_unstable();
+    keyed.into_iter().map(|k| !(k as u32)).collect()
+}
+
+/// All point indices in a biased randomized insertion order with Hilbert order inside each
+/// round. Deterministic for a given `seed`.
+pub fn brio_order(points: &[Point], seed: u64) -> Vec<u32> {
+    let keys = hilbert_keys(points);
+    let mut state = seed;
+    let rounds = keys.iter().map(|&k| {
+        // Round r (counted from the last) takes each point with probability 2^-(r+1): the
+        // number of trailing zero bits of a uniform random word. Early rounds are small.
+        let r = splitmix64(&mut state).trailing_zeros().min(31) as u64;
+        ((31 - r) << 32) | u64::from(k)
+    });
+    // The round occupies the high bits, the Hilbert key the low bits of the major key.
+    let mut keyed: Vec<(u64, u32)> = rounds.enumerate().map(|(i, k)| (k, !(i as u32))).collect();
+    keyed.sort_unstable();
+    keyed.into_iter().map(|(_, i)| !i).collect()
+}
+
+/// SplitMix64 (Steele, Lea and Flood 2014): a tiny, good-quality seeded generator.
+pub fn splitmix64(state: &mut u64) -> u64 {
+    *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    let mut z = *state;
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn hilbert_curve_visits_neighbouring_cells() {
+        // Consecutive indices on the curve are adjacent grid cells.
+        let n = 8u32;
+        let mut by_index = vec![(0u32, 0u32); (n * n) as usize];
+        for x in 0..n {
+            for y in 0..n {
+                // Scale the 8x8 grid into the top-left corner of the full grid.
+                let d = hilbert_index(x, y);
+                assert!(d < n * n, "cells of the first sub-square come first");
+                by_index[d as usize] = (x, y);
+            }
+        }
+        for w in by_index.windows(2) {
+            let dist = w[0].0.abs_diff(w[1].0) + w[0].1.abs_diff(w[1].1);
+            assert_eq!(dist, 1);
+        }
+    }
+
+    #[test]
+    fn orders_are_permutations() {
+        let mut s = 7;
+        let pts: Vec<Point> = (0..1000)
+            .map(|_| [splitmix64(&mut s) as f64 / u64::MAX as f64, splitmix64(&mut s) as f64 / u64::MAX as f64])
+            .collect();
+        for order in [hilbert_order(&pts), brio_order(&pts, 42)] {
+            let mut seen = order.clone();
+            seen.sort_unstable();
+            assert_eq!(seen, (0..1000).collect::<Vec<u32>>());
+        }
+    }
+}
