@@ -16,40 +16,67 @@ pub struct FinishedMesh<'a> {
     /// `point_attribute_count` values per vertex.
     pub point_attributes: &'a [f64],
     pub point_attribute_count: usize,
-    /// The caller's marker per vertex (0 where none was given).
-    pub input_point_markers: &'a [i32],
+    /// The caller's marker per vertex, if given.
+    pub input_point_markers: Option<&'a [i32]>,
     /// Per vertex: whether it is a vertex of the mesh (duplicates are not; `j` drops them).
     pub vertex_in_mesh: &'a [bool],
-    /// Whether the triangle in a slot is part of the output (real and not deleted).
-    pub triangle_in_mesh: &'a dyn Fn(u32) -> bool,
-    /// The marker of the segment along half-edge `e`, if `e` is (part of) a segment.
-    pub segment_marker: &'a dyn Fn(u32) -> Option<i32>,
-    /// Whether the mesh has segments at all (Triangle's `usesegments`); without them, hull edges
-    /// are the boundary and `numberofsegments` counts them.
+    /// Per triangle slot: whether the triangle is part of the output (real and not deleted).
+    pub triangle_in_mesh: &'a [bool],
+    /// The marker of the segment along half-edge `e`, if `e` is (part of) a segment; `None` when
+    /// the mesh has no segment at all.
+    pub segment_marker: Option<&'a dyn Fn(u32) -> Option<i32>>,
+    /// Whether segments take part (Triangle's `usesegments`); without them `numberofsegments`
+    /// counts the boundary (hull) edges, although no list is written.
     pub uses_segments: bool,
 }
 
-/// Output numbering of vertices and triangles.
+/// Output numbering of vertices, triangles and edges.
 pub struct Numbering {
-    /// Per vertex: its output index (0-based), or [`NONE`] when jettisoned.
-    pub vertex: Vec<u32>,
+    /// Per vertex: its output index (0-based), or [`NONE`] when jettisoned; `None` when every
+    /// vertex keeps its index.
+    pub vertex: Option<Vec<u32>>,
+    pub vertex_count: usize,
     /// Per triangle slot: its output index (0-based), or [`NONE`].
     pub triangle: Vec<u32>,
     /// Output triangles in order (slot indices).
     pub triangles: Vec<u32>,
-    pub vertex_count: usize,
+    /// Output edges in order: the half-edge of an output triangle whose twin is outside the mesh
+    /// or has a larger index, so each undirected edge appears once.
+    pub edges: Vec<u32>,
+}
+
+impl Numbering {
+    #[inline(always)]
+    pub fn vertex_index(&self, v: u32) -> u32 {
+        match &self.vertex {
+            Some(map) => map[v as usize],
+            None => v,
+        }
+    }
 }
 
 impl FinishedMesh<'_> {
+    #[inline(always)]
     fn is_boundary(&self, e: u32) -> bool {
-        !(self.triangle_in_mesh)(triangle_of(self.mesh.twin(e)))
+        !self.triangle_in_mesh[triangle_of(self.mesh.twin(e)) as usize]
     }
 
-    /// Output half-edges, each undirected edge once: the half-edge of an output triangle whose
-    /// twin is outside the mesh or has a larger index.
-    pub fn edges(&self, numbering: &Numbering) -> Vec<u32> {
-        let mut edges = Vec::with_capacity(numbering.triangles.len() * 3 / 2 + 8);
-        for &t in &numbering.triangles {
+    fn segment_marker_of(&self, e: u32) -> Option<i32> {
+        self.segment_marker.and_then(|f| f(e))
+    }
+
+    pub fn numbering(&self, jettison: bool) -> Numbering {
+        let slots = self.mesh.triangle_count() as usize;
+        let mut triangle = vec![NONE; slots];
+        let mut triangles = Vec::with_capacity(slots);
+        for (t, &inside) in self.triangle_in_mesh.iter().enumerate() {
+            if inside {
+                triangle[t] = triangles.len() as u32;
+                triangles.push(t as u32);
+            }
+        }
+        let mut edges = Vec::with_capacity(triangles.len() * 3 / 2 + 8);
+        for &t in &triangles {
             for e in 3 * t..3 * t + 3 {
                 let f = self.mesh.twin(e);
                 if e < f || self.is_boundary(e) {
@@ -57,27 +84,21 @@ impl FinishedMesh<'_> {
                 }
             }
         }
-        edges
-    }
-
-    pub fn numbering(&self, jettison: bool) -> Numbering {
-        let mut triangle = vec![NONE; self.mesh.triangle_count() as usize];
-        let mut triangles = Vec::with_capacity(self.mesh.triangle_count() as usize);
-        for t in 0..self.mesh.triangle_count() {
-            if (self.triangle_in_mesh)(t) {
-                triangle[t as usize] = triangles.len() as u32;
-                triangles.push(t);
+        let n = self.mesh.points.len();
+        let (vertex, vertex_count) = if jettison {
+            let mut map = vec![NONE; n];
+            let mut count = 0u32;
+            for (v, slot) in map.iter_mut().enumerate() {
+                if self.vertex_in_mesh[v] {
+                    *slot = count;
+                    count += 1;
+                }
             }
-        }
-        let mut vertex = vec![NONE; self.mesh.points.len()];
-        let mut count = 0u32;
-        for (v, slot) in vertex.iter_mut().enumerate() {
-            if !jettison || self.vertex_in_mesh[v] {
-                *slot = count;
-                count += 1;
-            }
-        }
-        Numbering { vertex, triangle, triangles, vertex_count: count as usize }
+            (Some(map), count as usize)
+        } else {
+            (None, n)
+        };
+        Numbering { vertex, vertex_count, triangle, triangles, edges }
     }
 
     /// Final vertex markers: input marker, else a non-zero segment's, else 1 on the boundary.
@@ -85,27 +106,28 @@ impl FinishedMesh<'_> {
         let n = self.mesh.points.len();
         let mut from_segment = vec![0i32; n];
         let mut on_boundary = vec![false; n];
-        for &t in &numbering.triangles {
-            for e in 3 * t..3 * t + 3 {
-                let (a, b) = (self.mesh.origin(e) as usize, self.mesh.dest(e) as usize);
-                if let Some(m) = (self.segment_marker)(e) {
-                    if m != 0 {
-                        from_segment[a] = if from_segment[a] == 0 { m } else { from_segment[a] };
-                        from_segment[b] = if from_segment[b] == 0 { m } else { from_segment[b] };
+        for &e in &numbering.edges {
+            let ends = [self.mesh.origin(e) as usize, self.mesh.dest(e) as usize];
+            if let Some(m) = self.segment_marker_of(e).filter(|&m| m != 0) {
+                for v in ends {
+                    if from_segment[v] == 0 {
+                        from_segment[v] = m;
                     }
                 }
-                if self.is_boundary(e) {
-                    on_boundary[a] = true;
-                    on_boundary[b] = true;
+            }
+            if self.is_boundary(e) {
+                for v in ends {
+                    on_boundary[v] = true;
                 }
             }
         }
         (0..n)
             .map(|v| {
+                let input = self.input_point_markers.map_or(0, |m| m[v]);
                 if !self.vertex_in_mesh[v] {
                     0
-                } else if self.input_point_markers[v] != 0 {
-                    self.input_point_markers[v]
+                } else if input != 0 {
+                    input
                 } else if from_segment[v] != 0 {
                     from_segment[v]
                 } else {
@@ -116,7 +138,7 @@ impl FinishedMesh<'_> {
     }
 
     fn edge_marker(&self, e: u32) -> i32 {
-        match (self.segment_marker)(e) {
+        match self.segment_marker_of(e) {
             Some(m) if m != 0 => m,
             _ => i32::from(self.is_boundary(e)),
         }
@@ -125,14 +147,14 @@ impl FinishedMesh<'_> {
     /// Fills the output arrays that the options ask for.
     pub fn write(&self, options: &Options, numbering: &Numbering, output: &mut Output) {
         let base = options.first_index();
-        let vid = |v: u32| numbering.vertex[v as usize] as i32 + base;
+        let vid = |v: u32| numbering.vertex_index(v) as i32 + base;
         let markers = !options.no_boundary_markers;
+        let n = self.mesh.points.len();
+        let kept = |v: &usize| numbering.vertex.as_ref().is_none_or(|map| map[*v] != NONE);
 
         output.point_count = numbering.vertex_count;
         output.point_attribute_count = self.point_attribute_count;
         if !options.no_node_output {
-            let kept = |v: &usize| numbering.vertex[*v] != NONE;
-            let n = self.mesh.points.len();
             output.points = Some((0..n).filter(kept).flat_map(|v| self.mesh.points[v]).collect());
             if self.point_attribute_count > 0 {
                 let k = self.point_attribute_count;
@@ -167,7 +189,7 @@ impl FinishedMesh<'_> {
             output.neighbors = Some(neighbors);
         }
 
-        let edges = self.edges(numbering);
+        let edges = &numbering.edges;
         output.edge_count = edges.len();
         if options.edges {
             output.edges = Some(edges.iter().flat_map(|&e| [vid(self.mesh.origin(e)), vid(self.mesh.dest(e))]).collect());
@@ -179,19 +201,15 @@ impl FinishedMesh<'_> {
         // Segments: the subsegments of the mesh, or (without segments) the hull edges, which
         // Triangle counts although it writes no list.
         let segments: Vec<u32> = if self.uses_segments {
-            edges.iter().copied().filter(|&e| (self.segment_marker)(e).is_some()).collect()
+            edges.iter().copied().filter(|&e| self.segment_marker_of(e).is_some()).collect()
         } else {
             edges.iter().copied().filter(|&e| self.is_boundary(e)).collect()
         };
         output.segment_count = segments.len();
-        if self.uses_segments && (options.pslg || options.convex_hull) && !options.no_poly_output {
+        if self.uses_segments && !options.no_poly_output {
             // Written from the outside, as Triangle writes hull segments.
-            output.segments = Some(
-                segments
-                    .iter()
-                    .flat_map(|&e| [vid(self.mesh.dest(e)), vid(self.mesh.origin(e))])
-                    .collect(),
-            );
+            output.segments =
+                Some(segments.iter().flat_map(|&e| [vid(self.mesh.dest(e)), vid(self.mesh.origin(e))]).collect());
             if markers {
                 output.segment_markers = Some(segments.iter().map(|&e| self.edge_marker(e)).collect());
             }

@@ -3,10 +3,10 @@
 
 use crate::assemble::FinishedMesh;
 use crate::data::{Hooks, Input, Output, VoronoiOutput};
-use crate::delaunay::{self, order, Triangulation};
+use crate::delaunay::{self, merge, order, Triangulation};
 use crate::error::Error;
-use crate::geometry::{Exact, Inexact, Point};
-use crate::mesh::NONE;
+use crate::geometry::{Exact, Inexact, Point, Predicates};
+use crate::mesh::{triangle_of, NONE};
 use crate::options::{Algorithm, Options};
 use crate::voronoi::voronoi_diagram;
 
@@ -49,14 +49,30 @@ fn checked_points(input: &Input<'_>) -> Result<Vec<Point>, Error> {
 }
 
 fn delaunay_triangulation(options: &Options, points: Vec<Point>) -> Triangulation {
-    let order = match options.algorithm {
-        Algorithm::Incremental => order::brio_order(&points, BRIO_SEED),
-        Algorithm::Default | Algorithm::Sweepline => order::hilbert_order(&points),
-    };
     if options.no_exact {
-        delaunay::triangulate::<Inexact>(points, &order)
+        delaunay_with::<Inexact>(options, points)
     } else {
-        delaunay::triangulate::<Exact>(points, &order)
+        delaunay_with::<Exact>(options, points)
+    }
+}
+
+fn delaunay_with<P: Predicates>(options: &Options, mut points: Vec<Point>) -> Triangulation {
+    match options.algorithm {
+        Algorithm::Incremental => {
+            let order = order::brio_order(&points, BRIO_SEED);
+            delaunay::triangulate::<P>(points, &order)
+        }
+        Algorithm::Default | Algorithm::Sweepline => {
+            let two_cores = std::thread::available_parallelism().is_ok_and(|n| n.get() >= 2);
+            if two_cores && points.len() >= merge::PARALLEL_THRESHOLD {
+                match merge::triangulate_two_halves::<P>(points) {
+                    Ok(triangulation) => return triangulation,
+                    Err(given_back) => points = given_back,
+                }
+            }
+            let order = order::hilbert_order(&points);
+            delaunay::triangulate::<P>(points, &order)
+        }
     }
 }
 
@@ -87,17 +103,18 @@ pub fn triangulate(options: &Options, input: &Input<'_>, _hooks: &Hooks<'_>) -> 
     } else {
         triangulation.duplicate_of.iter().map(|&u| u == NONE).collect()
     };
-    let zero_markers = vec![0; n];
     let mesh = &triangulation.mesh;
+    let triangle_in_mesh: Vec<bool> = (0..mesh.triangle_count()).map(|t| !mesh.is_ghost(t)).collect();
+    // With `c` the hull edges are segments with marker 1, as Triangle's convex hull segments.
+    let hull_segment = |e: u32| (!triangle_in_mesh[triangle_of(mesh.twin(e)) as usize]).then_some(1);
     let finished = FinishedMesh {
         mesh,
         point_attributes: input.point_attributes,
         point_attribute_count: input.point_attribute_count,
-        input_point_markers: input.point_markers.unwrap_or(&zero_markers),
+        input_point_markers: input.point_markers,
         vertex_in_mesh: &vertex_in_mesh,
-        triangle_in_mesh: &|t| !mesh.is_ghost(t),
-        // With `c` the hull edges are segments (marker 1, as Triangle's convex hull segments).
-        segment_marker: &|e| (options.convex_hull && mesh.is_ghost(crate::mesh::triangle_of(mesh.twin(e)))).then_some(1),
+        triangle_in_mesh: &triangle_in_mesh,
+        segment_marker: if options.convex_hull { Some(&hull_segment) } else { None },
         uses_segments: options.uses_segments(),
     };
     let numbering = finished.numbering(options.jettison);

@@ -23,10 +23,9 @@ pub fn voronoi_diagram(finished: &FinishedMesh<'_>, numbering: &Numbering, base:
         let (ao, ad, aa) = (attrs(o), attrs(d), attrs(a));
         point_attributes.extend((0..k).map(|i| ao[i] + xi * (ad[i] - ao[i]) + eta * (aa[i] - ao[i])));
     }
-    let triangulation_edges = finished.edges(numbering);
-    let mut edges = Vec::with_capacity(2 * triangulation_edges.len());
-    let mut norms = Vec::with_capacity(2 * triangulation_edges.len());
-    for e in triangulation_edges {
+    let mut edges = Vec::with_capacity(2 * numbering.edges.len());
+    let mut norms = Vec::with_capacity(2 * numbering.edges.len());
+    for &e in &numbering.edges {
         let here = numbering.triangle[triangle_of(e) as usize] as i32 + base;
         let there = numbering.triangle[triangle_of(mesh.twin(e)) as usize];
         if there != NONE {

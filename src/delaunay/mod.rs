@@ -9,6 +9,7 @@
 //! The default order is a Hilbert curve; `i` uses a biased randomized insertion order
 //! ([`order::brio_order`]). Both give the same triangulation for points in general position.
 
+pub mod merge;
 pub mod order;
 
 use crate::geometry::{Point, Predicates};

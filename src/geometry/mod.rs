@@ -30,13 +30,60 @@ fn coord(p: Point) -> robust::Coord<f64> {
     robust::Coord { x: p[0], y: p[1] }
 }
 
+/// Shewchuk's machine epsilon for round-to-nearest doubles, 2^-53.
+const EPSILON: f64 = f64::EPSILON * 0.5;
+/// Error bounds of the first (floating-point) stage of Shewchuk's adaptive predicates
+/// ("Adaptive Precision Floating-Point Arithmetic and Fast Robust Geometric Predicates", 1997).
+const CCW_ERRBOUND_A: f64 = (3.0 + 16.0 * EPSILON) * EPSILON;
+const ICC_ERRBOUND_A: f64 = (10.0 + 96.0 * EPSILON) * EPSILON;
+
 impl Predicates for Exact {
+    /// The floating-point filter is evaluated here, inline; only when it cannot decide the sign
+    /// does `robust` run the adaptive exact stages. The filter decides nearly every test.
     #[inline(always)]
     fn orient2d(a: Point, b: Point, c: Point) -> f64 {
+        let detleft = (a[0] - c[0]) * (b[1] - c[1]);
+        let detright = (a[1] - c[1]) * (b[0] - c[0]);
+        let det = detleft - detright;
+        let detsum = if detleft > 0.0 {
+            if detright <= 0.0 {
+                return det;
+            }
+            detleft + detright
+        } else if detleft < 0.0 {
+            if detright >= 0.0 {
+                return det;
+            }
+            -detleft - detright
+        } else {
+            return det;
+        };
+        let errbound = CCW_ERRBOUND_A * detsum;
+        if det >= errbound || -det >= errbound {
+            return det;
+        }
         robust::orient2d(coord(a), coord(b), coord(c))
     }
+
     #[inline(always)]
     fn incircle(a: Point, b: Point, c: Point, d: Point) -> f64 {
+        let (adx, ady) = (a[0] - d[0], a[1] - d[1]);
+        let (bdx, bdy) = (b[0] - d[0], b[1] - d[1]);
+        let (cdx, cdy) = (c[0] - d[0], c[1] - d[1]);
+        let (bdxcdy, cdxbdy) = (bdx * cdy, cdx * bdy);
+        let (cdxady, adxcdy) = (cdx * ady, adx * cdy);
+        let (adxbdy, bdxady) = (adx * bdy, bdx * ady);
+        let alift = adx * adx + ady * ady;
+        let blift = bdx * bdx + bdy * bdy;
+        let clift = cdx * cdx + cdy * cdy;
+        let det = alift * (bdxcdy - cdxbdy) + blift * (cdxady - adxcdy) + clift * (adxbdy - bdxady);
+        let permanent = (bdxcdy.abs() + cdxbdy.abs()) * alift
+            + (cdxady.abs() + adxcdy.abs()) * blift
+            + (adxbdy.abs() + bdxady.abs()) * clift;
+        let errbound = ICC_ERRBOUND_A * permanent;
+        if det > errbound || -det > errbound {
+            return det;
+        }
         robust::incircle(coord(a), coord(b), coord(c), coord(d))
     }
 }

@@ -1,0 +1,452 @@
+//! Two-core Delaunay triangulation: split the points by a vertical line, triangulate the halves
+//! on two threads, and merge.
+//!
+//! The merge follows the divide-and-conquer scheme of Guibas and Stolfi (1985) and Dwyer (1987):
+//! find the lower and upper common tangents of the two convex hulls, fill the region between the
+//! hulls by "zipping" up from the lower tangent (at each step the candidate whose triangle has the
+//! empty circumcircle, as in Guibas–Stolfi), then restore the Delaunay property with Lawson flips
+//! seeded with the new edges. The flips delete exactly the edges of the halves that Guibas–Stolfi
+//! delete (an edge of the final triangulation is locally Delaunay in any triangulation, so it is
+//! never flipped), which keeps the merge near the seam.
+//!
+//! The ghost triangles along the two facing hull chains are reused as the zipped triangles: the
+//! chains have as many edges as the zip makes triangles, and two new ghosts close the hull at the
+//! tangents.
+
+use super::{triangulate_in_order, Triangulation};
+use crate::delaunay::order::hilbert_order;
+use crate::geometry::{Point, Predicates};
+use crate::mesh::{Mesh, GHOST, NONE};
+
+/// Below this many points one thread is faster than two.
+pub const PARALLEL_THRESHOLD: usize = 20_000;
+
+/// One half: its vertices' global ids in insertion order and its mesh in global ids.
+struct Half {
+    mesh: Mesh,
+    duplicate_of: Vec<(u32, u32)>,
+}
+
+fn triangulate_half<P: Predicates>(points: &[Point], ids: &[u32]) -> Option<Half> {
+    let local_points: Vec<Point> = ids.iter().map(|&v| points[v as usize]).collect();
+    let order = hilbert_order(&local_points);
+    let sorted: Vec<Point> = order.iter().map(|&i| local_points[i as usize]).collect();
+    let global = |i: u32| ids[order[i as usize] as usize];
+    let (mut mesh, duplicates) = triangulate_in_order::<P>(sorted);
+    if mesh.triangle_count() == 0 {
+        return None;
+    }
+    for c in mesh.corners.iter_mut() {
+        if *c != GHOST {
+            *c = global(*c);
+        }
+    }
+    let duplicate_of =
+        duplicates.iter().enumerate().filter(|(_, &u)| u != NONE).map(|(i, &u)| (global(i as u32), global(u))).collect();
+    Some(Half { mesh, duplicate_of })
+}
+
+/// Triangulates with two threads; gives the points back when the split does not give two proper
+/// halves (too few points, or a half with all points collinear): the caller then triangulates
+/// sequentially.
+pub fn triangulate_two_halves<P: Predicates>(points: Vec<Point>) -> Result<Triangulation, Vec<Point>> {
+    let n = points.len();
+    let lexicographic = |a: &u32, b: &u32| {
+        let (p, q) = (points[*a as usize], points[*b as usize]);
+        p[0].total_cmp(&q[0]).then(p[1].total_cmp(&q[1]))
+    };
+    let mut ids: Vec<u32> = (0..n as u32).collect();
+    let mid = n / 2;
+    ids.select_nth_unstable_by(mid, lexicographic);
+    // Keep copies of one position on one side: move the right side's copies of the split point
+    // to the left, so every left point precedes every right point strictly.
+    let split_point = points[ids[mid] as usize];
+    let (left_part, right_part) = ids.split_at_mut(mid);
+    let mut left: Vec<u32> = left_part.to_vec();
+    let mut right: Vec<u32> = Vec::with_capacity(right_part.len());
+    for &v in right_part.iter() {
+        if points[v as usize] == split_point {
+            left.push(v);
+        } else {
+            right.push(v);
+        }
+    }
+    if left.len() < 3 || right.len() < 3 {
+        return Err(points);
+    }
+    let (l, r) = std::thread::scope(|scope| {
+        let right_job = scope.spawn(|| triangulate_half::<P>(&points, &right));
+        let l = triangulate_half::<P>(&points, &left);
+        (l, right_job.join().ok().flatten())
+    });
+    let (Some(l), Some(r)) = (l, r) else {
+        return Err(points);
+    };
+    let mut duplicate_of = vec![NONE; n];
+    for &(v, u) in l.duplicate_of.iter().chain(&r.duplicate_of) {
+        duplicate_of[v as usize] = u;
+    }
+    // One mesh: the right half's triangles after the left half's.
+    let offset = 3 * l.mesh.triangle_count();
+    let mut mesh = l.mesh;
+    mesh.corners.extend_from_slice(&r.mesh.corners);
+    mesh.twins.extend(r.mesh.twins.iter().map(|&f| f + offset));
+    mesh.points = points;
+    let mut merger = Merger::<P> { mesh, _p: Default::default() };
+    merger.merge(offset / 3);
+    Ok(Triangulation { mesh: merger.mesh, duplicate_of })
+}
+
+/// The hull of one half, read off its ghost triangles.
+struct Hull {
+    /// Counter-clockwise successor and predecessor of each hull vertex (NONE elsewhere), and the
+    /// ghost triangle of the hull edge leaving (`ghost_out`) and entering (`ghost_in`) it.
+    succ: std::collections::HashMap<u32, (u32, u32, u32, u32)>,
+}
+
+impl Hull {
+    fn read(mesh: &Mesh, triangles: std::ops::Range<u32>) -> Hull {
+        let mut succ = std::collections::HashMap::new();
+        let mut entries: Vec<(u32, u32, u32)> = Vec::new(); // (y, x, ghost): hull edge y→x
+        for t in triangles {
+            if let Some((x, y)) = ghost_edge(mesh, t) {
+                entries.push((y, x, t));
+            }
+        }
+        for &(y, x, t) in &entries {
+            succ.entry(y).or_insert((NONE, NONE, NONE, NONE)).0 = x;
+            succ.entry(y).or_insert((NONE, NONE, NONE, NONE)).2 = t;
+            succ.entry(x).or_insert((NONE, NONE, NONE, NONE)).1 = y;
+            succ.entry(x).or_insert((NONE, NONE, NONE, NONE)).3 = t;
+        }
+        Hull { succ }
+    }
+    fn succ(&self, v: u32) -> u32 {
+        self.succ[&v].0
+    }
+    fn pred(&self, v: u32) -> u32 {
+        self.succ[&v].1
+    }
+    fn ghost_out(&self, v: u32) -> u32 {
+        self.succ[&v].2
+    }
+    fn ghost_in(&self, v: u32) -> u32 {
+        self.succ[&v].3
+    }
+}
+
+/// For a ghost triangle `t`, its finite half-edge `x → y` (with the ghost vertex following `y`);
+/// the hull runs counter-clockwise from `y` to `x`. `None` for a real triangle.
+fn ghost_edge(mesh: &Mesh, t: u32) -> Option<(u32, u32)> {
+    let c = mesh.triangle(t);
+    let k = c.iter().position(|&v| v == GHOST)?;
+    Some((c[(k + 1) % 3], c[(k + 2) % 3]))
+}
+
+/// The half-edge of ghost triangle `t` that starts at `from` and ends at `to` (either may be GHOST).
+fn half_edge(mesh: &Mesh, t: u32, from: u32, to: u32) -> u32 {
+    (3 * t..3 * t + 3).find(|&e| mesh.origin(e) == from && mesh.dest(e) == to).expect("half-edge in ghost")
+}
+
+struct Merger<P: Predicates> {
+    mesh: Mesh,
+    _p: std::marker::PhantomData<P>,
+}
+
+impl<P: Predicates> Merger<P> {
+    fn pt(&self, v: u32) -> Point {
+        self.mesh.point(v)
+    }
+
+    fn orient(&self, a: u32, b: u32, c: u32) -> f64 {
+        P::orient2d(self.pt(a), self.pt(b), self.pt(c))
+    }
+
+    /// Whether `s`, collinear with `a → b`, lies strictly between `a` and `b`.
+    fn strictly_between(&self, a: u32, b: u32, s: u32) -> bool {
+        let (pa, pb, ps) = (self.pt(a), self.pt(b), self.pt(s));
+        let d = [pb[0] - pa[0], pb[1] - pa[1]];
+        let t = (ps[0] - pa[0]) * d[0] + (ps[1] - pa[1]) * d[1];
+        t > 0.0 && t < d[0] * d[0] + d[1] * d[1]
+    }
+
+    /// Whether `s` is below the tangent candidate `a → b` (strictly right of it, or on it
+    /// between the two), so that the tangent must move to `s`.
+    fn below(&self, a: u32, b: u32, s: u32) -> bool {
+        let o = self.orient(a, b, s);
+        o < 0.0 || (o == 0.0 && self.strictly_between(a, b, s))
+    }
+
+    fn merge(&mut self, right_start: u32) {
+        let total = self.mesh.triangle_count();
+        let left_hull = Hull::read(&self.mesh, 0..right_start);
+        let right_hull = Hull::read(&self.mesh, right_start..total);
+        let lexi_max = |h: &Hull| {
+            *h.succ.keys().max_by(|&&a, &&b| {
+                let (p, q) = (self.pt(a), self.pt(b));
+                p[0].total_cmp(&q[0]).then(p[1].total_cmp(&q[1]))
+            })
+            .unwrap()
+        };
+        let lexi_min = |h: &Hull| {
+            *h.succ.keys().min_by(|&&a, &&b| {
+                let (p, q) = (self.pt(a), self.pt(b));
+                p[0].total_cmp(&q[0]).then(p[1].total_cmp(&q[1]))
+            })
+            .unwrap()
+        };
+        let (l0, r0) = (lexi_max(&left_hull), lexi_min(&right_hull));
+
+        // Lower tangent lb → rb: every point on its left. Move l clockwise and r counter-clockwise
+        // while a hull neighbour lies below.
+        let (mut lb, mut rb) = (l0, r0);
+        loop {
+            if self.below(lb, rb, left_hull.pred(lb)) {
+                lb = left_hull.pred(lb);
+            } else if self.below(lb, rb, right_hull.succ(rb)) {
+                rb = right_hull.succ(rb);
+            } else {
+                break;
+            }
+        }
+        // Upper tangent rt → lt.
+        let (mut lt, mut rt) = (l0, r0);
+        loop {
+            if self.below(rt, lt, left_hull.succ(lt)) {
+                lt = left_hull.succ(lt);
+            } else if self.below(rt, lt, right_hull.pred(rt)) {
+                rt = right_hull.pred(rt);
+            } else {
+                break;
+            }
+        }
+
+        // The facing chains: left from lb counter-clockwise to lt, right from rb clockwise to rt.
+        // For each chain edge, the real half-edge on the inner side, and the ghost slot to reuse.
+        let mut free_slots: Vec<u32> = Vec::new();
+        let mut left_chain: Vec<(u32, u32)> = Vec::new(); // (next vertex, real half-edge l→next)
+        let mut v = lb;
+        while v != lt {
+            let g = left_hull.ghost_out(v);
+            let w = left_hull.succ(v);
+            let ghost_half = half_edge(&self.mesh, g, w, v);
+            left_chain.push((w, self.mesh.twin(ghost_half)));
+            free_slots.push(g);
+            v = w;
+        }
+        let mut right_chain: Vec<(u32, u32)> = Vec::new(); // (next vertex, real half-edge next→r)
+        let mut v = rb;
+        while v != rt {
+            let g = right_hull.ghost_in(v);
+            let w = right_hull.pred(v);
+            let ghost_half = half_edge(&self.mesh, g, v, w);
+            right_chain.push((w, self.mesh.twin(ghost_half)));
+            free_slots.push(g);
+            v = w;
+        }
+        // Ghost half-edges that the two new ghosts attach to.
+        let g_in_lb = left_hull.ghost_in(lb);
+        let inf_to_lb = half_edge(&self.mesh, g_in_lb, GHOST, lb);
+        let g_out_rb = right_hull.ghost_out(rb);
+        let rb_to_inf = half_edge(&self.mesh, g_out_rb, rb, GHOST);
+        let g_in_rt = right_hull.ghost_in(rt);
+        let inf_to_rt = half_edge(&self.mesh, g_in_rt, GHOST, rt);
+        let g_out_lt = left_hull.ghost_out(lt);
+        let lt_to_inf = half_edge(&self.mesh, g_out_lt, lt, GHOST);
+
+        // Zip. Each new triangle is (l, r, x) with slot 0 the base l→r.
+        let (mut l, mut r) = (lb, rb);
+        let (mut li, mut ri) = (0usize, 0usize);
+        let mut below_half = NONE; // the half-edge r→l (reversed base) of the previous triangle
+        let bottom_ghost = self.mesh.add_triangle(rb, lb, GHOST);
+        let mut slots = free_slots.into_iter();
+        let mut new_edges: Vec<u32> = Vec::new();
+        while li < left_chain.len() || ri < right_chain.len() {
+            let left_candidate = left_chain.get(li).map(|&(w, _)| w);
+            let right_candidate = right_chain.get(ri).map(|&(w, _)| w);
+            let left_ok = left_candidate.is_some_and(|w| self.orient(l, r, w) > 0.0);
+            let right_ok = right_candidate.is_some_and(|w| self.orient(l, r, w) > 0.0);
+            let take_right = match (left_ok, right_ok) {
+                (true, true) => {
+                    let (lc, rc) = (left_candidate.unwrap(), right_candidate.unwrap());
+                    P::incircle(self.pt(l), self.pt(r), self.pt(lc), self.pt(rc)) > 0.0
+                }
+                (false, true) => true,
+                (true, false) => false,
+                // Collinear leftovers (cannot happen for separated convex hulls in exact
+                // arithmetic): take whichever chain still has edges.
+                (false, false) => left_candidate.is_none(),
+            };
+            let t = slots.next().expect("one ghost slot per chain edge");
+            let base = 3 * t;
+            if take_right {
+                let (w, real) = right_chain[ri];
+                ri += 1;
+                // (l, r, w): r→w replaces the right ghost; w→l is the next reversed base.
+                self.set(t, [l, r, w]);
+                self.link(base + 1, real);
+                self.link_base(base, below_half, bottom_ghost);
+                below_half = base + 2;
+                r = w;
+            } else {
+                let (w, real) = left_chain[li];
+                li += 1;
+                // (l, r, w): w→l replaces the left ghost; r→w is the next reversed base.
+                self.set(t, [l, r, w]);
+                self.link(base + 2, real);
+                self.link_base(base, below_half, bottom_ghost);
+                below_half = base + 1;
+                l = w;
+            }
+            new_edges.extend_from_slice(&[base, base + 1, base + 2]);
+        }
+        debug_assert!(l == lt && r == rt);
+        let top_ghost = self.mesh.add_triangle(lt, rt, GHOST);
+        // The bottom ghost (rb, lb, ∞): rb→lb, lb→∞, ∞→rb.
+        let bg = 3 * bottom_ghost;
+        if below_half == NONE {
+            // No chain edges at all: the tangents coincide and the two ghosts face each other.
+            self.link(bg, 3 * top_ghost);
+        }
+        self.link(bg + 1, inf_to_lb);
+        self.link(bg + 2, rb_to_inf);
+        // The top ghost (lt, rt, ∞): lt→rt, rt→∞, ∞→lt.
+        let tg = 3 * top_ghost;
+        if below_half != NONE {
+            self.link(tg, below_half);
+        }
+        self.link(tg + 1, inf_to_rt);
+        self.link(tg + 2, lt_to_inf);
+        self.legalize(new_edges);
+    }
+
+    fn set(&mut self, t: u32, [a, b, c]: [u32; 3]) {
+        let i = 3 * t as usize;
+        self.mesh.corners[i..i + 3].copy_from_slice(&[a, b, c]);
+    }
+
+    fn link(&mut self, a: u32, b: u32) {
+        self.mesh.twins[a as usize] = b;
+        self.mesh.twins[b as usize] = a;
+    }
+
+    /// Links the base l→r of a zipped triangle to the triangle below it, or to the bottom ghost.
+    fn link_base(&mut self, base: u32, below_half: u32, bottom_ghost: u32) {
+        if below_half == NONE {
+            self.link(base, 3 * bottom_ghost);
+        } else {
+            self.link(base, below_half);
+        }
+    }
+
+    /// Lawson's flip algorithm from the given half-edges until every edge is locally Delaunay.
+    fn legalize(&mut self, mut stack: Vec<u32>) {
+        while let Some(e) = stack.pop() {
+            let f = self.mesh.twin(e);
+            let (a, b, c, d) = (self.mesh.origin(e), self.mesh.dest(e), self.mesh.apex(e), self.mesh.apex(f));
+            if a == GHOST || b == GHOST || c == GHOST || d == GHOST {
+                continue; // hull and ghost edges stay: the hull is already convex
+            }
+            if P::incircle(self.pt(a), self.pt(b), self.pt(c), self.pt(d)) > 0.0 {
+                let [t1, t2] = self.mesh.flip(e);
+                // (a, d, c) and (d, b, c): their four outer edges may now be illegal.
+                stack.extend_from_slice(&[3 * t1, 3 * t1 + 2, 3 * t2, 3 * t2 + 1]);
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::delaunay::order::splitmix64;
+    use crate::geometry::Exact;
+
+    /// Valid, Delaunay, and with the triangle count Euler's formula gives for its hull.
+    fn check(points: Vec<Point>) {
+        let distinct = {
+            let mut v: Vec<(u64, u64)> = points.iter().map(|p| (p[0].to_bits(), p[1].to_bits())).collect();
+            v.sort_unstable();
+            v.dedup();
+            v.len()
+        };
+        let t = triangulate_two_halves::<Exact>(points).unwrap_or_else(|_| panic!("no split"));
+        let m = &t.mesh;
+        m.check_topology().unwrap();
+        let mut ghosts = 0;
+        for tri in 0..m.triangle_count() {
+            if m.is_ghost(tri) {
+                ghosts += 1;
+                continue;
+            }
+            let [a, b, c] = m.triangle(tri).map(|v| m.point(v));
+            assert!(Exact::orient2d(a, b, c) > 0.0);
+            for e in 3 * tri..3 * tri + 3 {
+                let q = m.apex(m.twin(e));
+                if q != GHOST {
+                    assert!(Exact::incircle(a, b, c, m.point(q)) <= 0.0, "not Delaunay");
+                }
+            }
+        }
+        let real = m.triangle_count() as usize - ghosts;
+        assert_eq!(real, 2 * distinct - 2 - ghosts);
+        assert_eq!(t.duplicate_of.iter().filter(|&&u| u != NONE).count(), t.duplicate_of.len() - distinct);
+    }
+
+    fn uniform(n: usize, seed: u64) -> Vec<Point> {
+        let mut s = seed;
+        (0..n).map(|_| [splitmix64(&mut s) as f64 / u64::MAX as f64, splitmix64(&mut s) as f64 / u64::MAX as f64]).collect()
+    }
+
+    #[test]
+    fn uniform_points() {
+        for seed in 0..4 {
+            check(uniform(3000 + 17 * seed as usize, seed));
+        }
+    }
+
+    #[test]
+    fn grid_with_collinear_seams_and_duplicates() {
+        let mut pts = Vec::new();
+        for i in 0..60 {
+            for j in 0..50 {
+                pts.push([i as f64, j as f64]);
+            }
+        }
+        // Copies of the points on the split column, so that copies straddle the median.
+        let copies: Vec<Point> = pts.iter().filter(|p| p[0] == 30.0).copied().collect();
+        pts.extend(copies);
+        check(pts);
+    }
+
+    #[test]
+    fn few_vertical_lines_and_a_circle() {
+        let mut s = 9;
+        let mut pts: Vec<Point> =
+            (0..4000).map(|i| [(i % 4) as f64, (splitmix64(&mut s) % 100_000) as f64 * 1e-3]).collect();
+        check(pts.clone());
+        pts.clear();
+        for i in 0..2048 {
+            let a = i as f64 * std::f64::consts::TAU / 2048.0;
+            pts.push([a.cos(), a.sin()]);
+        }
+        pts.push([0.0, 0.0]);
+        check(pts);
+    }
+
+    #[test]
+    fn clustered_and_tiny_scale() {
+        let mut s = 5;
+        let mut pts = Vec::new();
+        for c in 0..20 {
+            let (cx, cy) = ((c % 5) as f64 * 10.0, (c / 5) as f64 * 10.0);
+            for _ in 0..200 {
+                let r = splitmix64(&mut s) as f64 / u64::MAX as f64 * 1e-3;
+                let a = splitmix64(&mut s) as f64 / u64::MAX as f64 * 6.283;
+                pts.push([cx + r * a.cos(), cy + r * a.sin()]);
+            }
+        }
+        check(pts);
+        check(uniform(2000, 77).iter().map(|p| [1e12 + p[0] * 1e-3, -1e12 + p[1] * 1e-3]).collect());
+    }
+}
