@@ -7,7 +7,7 @@
 //! segment's marker, else 1 on a boundary, else 0.
 
 use crate::data::Output;
-use crate::mesh::{triangle_of, Mesh, NONE};
+use crate::mesh::{triangle_of, Mesh, GHOST, NONE};
 use crate::options::Options;
 
 /// A finished mesh with the per-vertex and per-edge facts the outputs need.
@@ -16,15 +16,16 @@ pub struct FinishedMesh<'a> {
     /// `point_attribute_count` values per vertex.
     pub point_attributes: &'a [f64],
     pub point_attribute_count: usize,
-    /// The caller's marker per vertex, if given.
-    pub input_point_markers: Option<&'a [i32]>,
-    /// Per vertex: whether it is a vertex of the mesh (duplicates are not; `j` drops them).
+    /// The caller's marker per vertex (0 where none was given).
+    pub input_point_markers: &'a [i32],
+    /// All vertices lie on one line (no triangle): every vertex counts as on the hull.
+    pub all_collinear: bool,
+    /// Per vertex: whether it is a corner of an output triangle (`j` drops the others).
     pub vertex_in_mesh: &'a [bool],
     /// Per triangle slot: whether the triangle is part of the output (real and not deleted).
     pub triangle_in_mesh: &'a [bool],
-    /// The marker of the segment along half-edge `e`, if `e` is (part of) a segment; `None` when
-    /// the mesh has no segment at all.
-    pub segment_marker: Option<&'a dyn Fn(u32) -> Option<i32>>,
+    /// The marker of each segment id of [`Mesh::segment`]; `None` when no segments are tracked.
+    pub segment_markers: Option<&'a [i32]>,
     /// Whether segments take part (Triangle's `usesegments`); without them `numberofsegments`
     /// counts the boundary (hull) edges, although no list is written.
     pub uses_segments: bool,
@@ -62,7 +63,9 @@ impl FinishedMesh<'_> {
     }
 
     fn segment_marker_of(&self, e: u32) -> Option<i32> {
-        self.segment_marker.and_then(|f| f(e))
+        let markers = self.segment_markers?;
+        let id = self.mesh.segment_of(e);
+        (id != NONE).then(|| markers[id as usize])
     }
 
     pub fn numbering(&self, jettison: bool) -> Numbering {
@@ -101,37 +104,49 @@ impl FinishedMesh<'_> {
         Numbering { vertex, vertex_count, triangle, triangles, edges }
     }
 
-    /// Final vertex markers: input marker, else a non-zero segment's, else 1 on the boundary.
+    /// Final vertex markers: the input marker; else, as Triangle assigns them while inserting
+    /// segments, the non-zero marker of the first segment (in input order) that the vertex is an
+    /// endpoint of a piece of; else 1 on the boundary of the mesh; else 0. (A duplicate left out
+    /// of the mesh keeps its input marker, as in Triangle.)
     fn vertex_markers(&self, numbering: &Numbering) -> Vec<i32> {
         let n = self.mesh.points.len();
-        let mut from_segment = vec![0i32; n];
-        let mut on_boundary = vec![false; n];
-        for &e in &numbering.edges {
-            let ends = [self.mesh.origin(e) as usize, self.mesh.dest(e) as usize];
-            if let Some(m) = self.segment_marker_of(e).filter(|&m| m != 0) {
-                for v in ends {
-                    if from_segment[v] == 0 {
-                        from_segment[v] = m;
-                    }
+        let mut first_segment = vec![NONE; n];
+        if let Some(markers) = self.segment_markers {
+            for e in 0..self.mesh.corners.len() as u32 {
+                let id = self.mesh.segment_of(e);
+                let v = self.mesh.origin(e);
+                if id != NONE && markers[id as usize] != 0 && v != GHOST && id < first_segment[v as usize] {
+                    first_segment[v as usize] = id;
                 }
             }
+        }
+        // On the boundary: an edge of the mesh with the outside on one side, or (as Triangle marks
+        // them before eating triangles) a piece of a segment on the convex hull.
+        let mut on_boundary = vec![false; n];
+        for &e in &numbering.edges {
             if self.is_boundary(e) {
-                for v in ends {
-                    on_boundary[v] = true;
+                on_boundary[self.mesh.origin(e) as usize] = true;
+                on_boundary[self.mesh.dest(e) as usize] = true;
+            }
+        }
+        if self.segment_markers.is_some() {
+            for e in 0..self.mesh.corners.len() as u32 {
+                let (a, b) = (self.mesh.origin(e), self.mesh.dest(e));
+                if a != GHOST && b != GHOST && self.mesh.is_segment(e) && self.mesh.apex(e) == GHOST {
+                    on_boundary[a as usize] = true;
+                    on_boundary[b as usize] = true;
                 }
             }
         }
         (0..n)
             .map(|v| {
-                let input = self.input_point_markers.map_or(0, |m| m[v]);
-                if !self.vertex_in_mesh[v] {
-                    0
-                } else if input != 0 {
+                let input = self.input_point_markers[v];
+                if input != 0 {
                     input
-                } else if from_segment[v] != 0 {
-                    from_segment[v]
+                } else if first_segment[v] != NONE {
+                    self.segment_markers.map_or(0, |m| m[first_segment[v] as usize])
                 } else {
-                    i32::from(on_boundary[v])
+                    i32::from(on_boundary[v] || self.all_collinear)
                 }
             })
             .collect()

@@ -11,8 +11,10 @@
 //! - [`ffi`]: the C ABI.
 
 pub mod assemble;
+pub mod constrain;
 pub mod data;
 pub mod delaunay;
+pub mod domain;
 pub mod error;
 pub mod ffi;
 pub mod geometry;

@@ -2,11 +2,13 @@
 //! [`Output`] and [`VoronoiOutput`].
 
 use crate::assemble::FinishedMesh;
+use crate::constrain::Constrainer;
+use crate::domain::{carve, Domain};
 use crate::data::{Hooks, Input, Output, VoronoiOutput};
-use crate::delaunay::{self, merge, order, Triangulation};
+use crate::delaunay::{self, merge, order, Inserter, Triangulation};
 use crate::error::Error;
 use crate::geometry::{Exact, Inexact, Point, Predicates};
-use crate::mesh::{triangle_of, NONE};
+use crate::mesh::{Mesh, GHOST, NONE};
 use crate::options::{Algorithm, Options};
 use crate::voronoi::voronoi_diagram;
 
@@ -16,7 +18,6 @@ const BRIO_SEED: u64 = 0x7269_616E_676C_6521;
 /// Rejects the switches whose features have not landed yet, with a clear message.
 fn check_supported(options: &Options) -> Result<(), Error> {
     let unsupported = [
-        (options.pslg, "The `p` switch (planar straight line graphs)"),
         (options.refine, "The `r` switch (refining a mesh)"),
         (options.min_angle.is_some(), "The `q` switch (quality meshing)"),
         (options.max_area.is_some() || options.variable_area, "The `a` switch (area constraints)"),
@@ -48,14 +49,6 @@ fn checked_points(input: &Input<'_>) -> Result<Vec<Point>, Error> {
     Ok(points)
 }
 
-fn delaunay_triangulation(options: &Options, points: Vec<Point>) -> Triangulation {
-    if options.no_exact {
-        delaunay_with::<Inexact>(options, points)
-    } else {
-        delaunay_with::<Exact>(options, points)
-    }
-}
-
 fn delaunay_with<P: Predicates>(options: &Options, mut points: Vec<Point>) -> Triangulation {
     match options.algorithm {
         Algorithm::Incremental => {
@@ -78,17 +71,41 @@ fn delaunay_with<P: Predicates>(options: &Options, mut points: Vec<Point>) -> Tr
 
 /// Triangulates `input` as the switches in `options` ask. The safe entry point of the engine:
 /// the C ABI, the command-line program and Rust callers all come through here.
-pub fn triangulate(options: &Options, input: &Input<'_>, _hooks: &Hooks<'_>) -> Result<(Output, VoronoiOutput), Error> {
+pub fn triangulate(options: &Options, input: &Input<'_>, hooks: &Hooks<'_>) -> Result<(Output, VoronoiOutput), Error> {
     check_supported(options)?;
     let points = checked_points(input)?;
-    let n = points.len();
-    let triangulation = delaunay_triangulation(options, points);
+    if options.no_exact {
+        run::<Inexact>(options, input, hooks, points)
+    } else {
+        run::<Exact>(options, input, hooks, points)
+    }
+}
 
+/// The mesh after every algorithm ran, with what the outputs need to know about it.
+struct Meshed {
+    mesh: Mesh,
+    /// Per vertex (input vertices first, then new ones).
+    point_attributes: Vec<f64>,
+    point_markers: Vec<i32>,
+    /// Per segment id (input segments, then the hull segments of `c`).
+    segment_markers: Vec<i32>,
+    domain: Domain,
+    uses_segments: bool,
+}
+
+fn run<P: Predicates>(
+    options: &Options,
+    input: &Input<'_>,
+    _hooks: &Hooks<'_>,
+    points: Vec<Point>,
+) -> Result<(Output, VoronoiOutput), Error> {
+    let n = points.len();
+    let Triangulation { mesh, duplicate_of } = delaunay_with::<P>(options, points);
     let mut output = Output::default();
     let base = options.first_index();
-    for (v, &u) in triangulation.duplicate_of.iter().enumerate() {
+    for (v, &u) in duplicate_of.iter().enumerate() {
         if u != NONE {
-            let p = triangulation.mesh.points[v];
+            let p = mesh.points[v];
             output.warnings.push(format!(
                 "A duplicate vertex at ({}, {}) appeared and was ignored (vertex {} duplicates vertex {}).",
                 p[0],
@@ -98,28 +115,133 @@ pub fn triangulate(options: &Options, input: &Input<'_>, _hooks: &Hooks<'_>) -> 
             ));
         }
     }
-    let vertex_in_mesh: Vec<bool> = if triangulation.is_degenerate() {
-        vec![false; n]
-    } else {
-        triangulation.duplicate_of.iter().map(|&u| u == NONE).collect()
+    let k = input.point_attribute_count;
+    let mut meshed = Meshed {
+        point_attributes: input.point_attributes.to_vec(),
+        point_markers: input.point_markers.map_or_else(|| vec![0; n], <[i32]>::to_vec),
+        segment_markers: Vec::new(),
+        domain: Domain::default(),
+        uses_segments: options.uses_segments(),
+        mesh,
     };
-    let mesh = &triangulation.mesh;
-    let triangle_in_mesh: Vec<bool> = (0..mesh.triangle_count()).map(|t| !mesh.is_ghost(t)).collect();
-    // With `c` the hull edges are segments with marker 1, as Triangle's convex hull segments.
-    let hull_segment = |e: u32| (!triangle_in_mesh[triangle_of(mesh.twin(e)) as usize]).then_some(1);
+    let degenerate = meshed.mesh.triangle_count() == 0;
+    if !degenerate && (options.pslg || options.convex_hull) {
+        let mut cdt = Constrainer::new(Inserter::<P>::new(std::mem::take(&mut meshed.mesh)));
+        if options.pslg {
+            insert_segments(&mut cdt, input, &duplicate_of, base, &mut meshed.segment_markers, &mut output.warnings);
+        }
+        if options.convex_hull {
+            cdt.mark_hull(meshed.segment_markers.len() as u32);
+            meshed.segment_markers.push(1);
+        }
+        for c in &cdt.crossings {
+            // New vertices where segments cross: attributes interpolated along the crossed one.
+            let (from, to) = (c.from as usize * k, c.to as usize * k);
+            for i in 0..k {
+                let (a, b) = (meshed.point_attributes[from + i], meshed.point_attributes[to + i]);
+                meshed.point_attributes.push(a + c.t * (b - a));
+            }
+            meshed.point_markers.push(0);
+        }
+        let holes: &[f64] = if options.ignore_holes { &[] } else { input.holes };
+        meshed.domain = if options.pslg {
+            carve(&mut cdt, options.convex_hull, holes, input.regions)
+        } else {
+            carve(&mut cdt, true, &[], &[])
+        };
+        meshed.mesh = cdt.inserter.mesh;
+    } else {
+        let mesh = &meshed.mesh;
+        meshed.domain.in_mesh = (0..mesh.triangle_count()).map(|t| !mesh.is_ghost(t)).collect();
+    }
+    if options.pslg && !options.no_poly_output {
+        output.alias_holes_and_regions = true;
+        output.hole_count = input.hole_count();
+        output.region_count = input.region_count();
+    }
+    Ok(write_outputs(options, input, &meshed, output))
+}
+
+/// Inserts the input segments (skipping those with a bad or repeated endpoint, with a warning).
+fn insert_segments<P: Predicates>(
+    cdt: &mut Constrainer<P>,
+    input: &Input<'_>,
+    duplicate_of: &[u32],
+    base: i32,
+    markers: &mut Vec<i32>,
+    warnings: &mut Vec<String>,
+) {
+    let n = input.point_count() as i64;
+    for (i, s) in input.segments.chunks_exact(2).enumerate() {
+        let marker = input.segment_markers.map_or(0, |m| m[i]);
+        let id = markers.len() as u32;
+        markers.push(marker);
+        let ends = [s[0] as i64 - base as i64, s[1] as i64 - base as i64];
+        if ends.iter().any(|&v| v < 0 || v >= n) {
+            warnings.push(format!(
+                "Invalid first or second endpoint of segment {} ({} {}); the segment was skipped.",
+                i as i32 + base,
+                s[0],
+                s[1]
+            ));
+            continue;
+        }
+        // A duplicate vertex is not in the triangulation: use the copy that is.
+        let [a, b] = ends.map(|v| {
+            let v = v as u32;
+            if duplicate_of[v as usize] == NONE {
+                v
+            } else {
+                duplicate_of[v as usize]
+            }
+        });
+        if a == b {
+            warnings.push(format!(
+                "Endpoints of segment {} are coincident ({} {}); the segment was skipped.",
+                i as i32 + base,
+                s[0],
+                s[1]
+            ));
+            continue;
+        }
+        cdt.insert_segment(a, b, id);
+    }
+}
+
+fn write_outputs(options: &Options, input: &Input<'_>, meshed: &Meshed, mut output: Output) -> (Output, VoronoiOutput) {
+    let mesh = &meshed.mesh;
+    // With no triangle at all (all points on a line) no vertex is left out, as in Triangle.
+    let all_collinear = mesh.triangle_count() == 0 && !meshed.uses_segments;
+    let mut vertex_in_mesh = vec![all_collinear; mesh.points.len()];
+    for (t, &inside) in meshed.domain.in_mesh.iter().enumerate() {
+        if inside {
+            for v in mesh.triangle(t as u32) {
+                if v != GHOST {
+                    vertex_in_mesh[v as usize] = true;
+                }
+            }
+        }
+    }
     let finished = FinishedMesh {
         mesh,
-        point_attributes: input.point_attributes,
+        point_attributes: &meshed.point_attributes,
         point_attribute_count: input.point_attribute_count,
-        input_point_markers: input.point_markers,
+        input_point_markers: &meshed.point_markers,
+        all_collinear,
         vertex_in_mesh: &vertex_in_mesh,
-        triangle_in_mesh: &triangle_in_mesh,
-        segment_marker: if options.convex_hull { Some(&hull_segment) } else { None },
-        uses_segments: options.uses_segments(),
+        triangle_in_mesh: &meshed.domain.in_mesh,
+        segment_markers: (!mesh.segment.is_empty()).then_some(&meshed.segment_markers[..]),
+        uses_segments: meshed.uses_segments,
     };
     let numbering = finished.numbering(options.jettison);
     finished.write(options, &numbering, &mut output);
-
+    if options.region_attributes {
+        // `A`: one more triangle attribute, the region's (0 outside every region).
+        let attributes = numbering.triangles.iter().map(|&t| meshed.domain.region_attribute[t as usize]).collect();
+        output.triangle_attribute_count = 1;
+        output.triangle_attributes = (!options.no_element_output).then_some(attributes);
+    }
+    let base = options.first_index();
     let mut voronoi = VoronoiOutput {
         point_count: output.triangle_count,
         point_attribute_count: input.point_attribute_count,
@@ -129,5 +251,5 @@ pub fn triangulate(options: &Options, input: &Input<'_>, _hooks: &Hooks<'_>) -> 
     if options.voronoi {
         voronoi.diagram = Some(voronoi_diagram(&finished, &numbering, base));
     }
-    Ok((output, voronoi))
+    (output, voronoi)
 }

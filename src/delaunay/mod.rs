@@ -82,7 +82,13 @@ impl<P: Predicates> Inserter<P> {
         t
     }
 
-    /// Locates `p` by a visibility walk from `start` (any triangle).
+    /// A triangle near the last insertion: a good start for a walk.
+    pub fn last_triangle(&self) -> u32 {
+        self.last
+    }
+
+    /// Locates `p` by a visibility walk from `start` (any triangle). The walk is stochastic, so
+    /// it terminates in any triangulation, constrained ones included.
     pub fn locate(&mut self, p: Point, start: u32) -> Location {
         let mesh_triangles = self.mesh.triangle_count();
         let mut t = self.real_near(start);
@@ -213,11 +219,12 @@ impl<P: Predicates> Inserter<P> {
 
     /// Lawson's flip loop: every half-edge on the stack is opposite `v` in a triangle that
     /// contains `v`; flip it while `v` lies in the circumcircle of the triangle across it.
+    /// Segments are never flipped (the result is then constrained Delaunay, Chew 1989).
     fn legalize(&mut self, v: u32) {
         let p = self.mesh.point(v);
         while let Some(e) = self.stack.pop() {
             let f = self.mesh.twin(e);
-            if self.conflicts(triangle_of(f), p) {
+            if !self.mesh.is_segment(e) && self.conflicts(triangle_of(f), p) {
                 let [t1, t2] = self.mesh.flip(e);
                 self.stack.push(3 * t1);
                 self.stack.push(3 * t2);
@@ -346,9 +353,9 @@ mod tests {
         let t = triangulate::<Exact>(pts, &ord);
         check_delaunay(&t);
         assert_eq!(t.mesh.real_triangles().count(), 2 * 81);
-        // The later of two duplicates survives (Triangle's behaviour).
-        assert_eq!(t.duplicate_of[33], 100);
-        assert_eq!(t.duplicate_of[0], 101);
+        // The first of two duplicates survives.
+        assert_eq!(t.duplicate_of[100], 33);
+        assert_eq!(t.duplicate_of[101], 0);
         let line: Vec<Point> = (0..10).map(|i| [i as f64, 2.0 * i as f64]).collect();
         let ord = order::hilbert_order(&line);
         assert!(triangulate::<Exact>(line, &ord).is_degenerate());

@@ -54,13 +54,14 @@ fn hilbert_keys(points: &[Point]) -> Vec<u32> {
         .collect()
 }
 
-/// All point indices in Hilbert-curve order. Among points with equal keys the later input point
-/// comes first, so of two duplicate points the later one is inserted and survives, as in Triangle.
+/// All point indices in Hilbert-curve order. Among points with equal keys the earlier input
+/// point comes first, so of two duplicate points the first is inserted and survives (as
+/// Triangle's documentation of `j` says).
 pub fn hilbert_order(points: &[Point]) -> Vec<u32> {
     let mut keyed: Vec<u64> =
-        hilbert_keys(points).into_iter().enumerate().map(|(i, k)| (u64::from(k) << 32) | u64::from(!(i as u32))).collect();
+        hilbert_keys(points).into_iter().enumerate().map(|(i, k)| (u64::from(k) << 32) | i as u64).collect();
     keyed.sort_unstable();
-    keyed.into_iter().map(|k| !(k as u32)).collect()
+    keyed.into_iter().map(|k| k as u32).collect()
 }
 
 /// All point indices in a biased randomized insertion order with Hilbert order inside each
@@ -75,9 +76,9 @@ pub fn brio_order(points: &[Point], seed: u64) -> Vec<u32> {
         ((31 - r) << 32) | u64::from(k)
     });
     // The round occupies the high bits, the Hilbert key the low bits of the major key.
-    let mut keyed: Vec<(u64, u32)> = rounds.enumerate().map(|(i, k)| (k, !(i as u32))).collect();
+    let mut keyed: Vec<(u64, u32)> = rounds.enumerate().map(|(i, k)| (k, i as u32)).collect();
     keyed.sort_unstable();
-    keyed.into_iter().map(|(_, i)| !i).collect()
+    keyed.into_iter().map(|(_, i)| i).collect()
 }
 
 /// SplitMix64 (Steele, Lea and Flood 2014): a tiny, good-quality seeded generator.

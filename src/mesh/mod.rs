@@ -51,12 +51,124 @@ pub struct Mesh {
     pub corners: Vec<u32>,
     /// The twin of each half-edge.
     pub twins: Vec<u32>,
+    /// Per half-edge: the id of the segment it lies on, or [`NONE`]. Empty while segments are
+    /// not tracked (plain Delaunay triangulation); see [`Mesh::track_segments`].
+    pub segment: Vec<u32>,
+    /// Per vertex: a half-edge that starts at it, or [`NONE`]. Empty while not tracked; see
+    /// [`Mesh::track_vertex_edges`].
+    pub vertex_edge: Vec<u32>,
 }
 
 impl Mesh {
     pub fn with_points(points: Vec<Point>) -> Mesh {
         let capacity = 3 * (2 * points.len() + 2);
-        Mesh { points, corners: Vec::with_capacity(capacity), twins: Vec::with_capacity(capacity) }
+        Mesh {
+            points,
+            corners: Vec::with_capacity(capacity),
+            twins: Vec::with_capacity(capacity),
+            segment: Vec::new(),
+            vertex_edge: Vec::new(),
+        }
+    }
+
+    /// Starts tracking which edges are segments (all none yet). Every operation keeps it up to
+    /// date from then on: split halves of a segment stay on it, flips must not touch segments.
+    pub fn track_segments(&mut self) {
+        if self.segment.is_empty() {
+            self.segment = vec![NONE; self.corners.len()];
+        }
+    }
+
+    /// Starts tracking one outgoing half-edge per vertex, kept valid by every operation.
+    pub fn track_vertex_edges(&mut self) {
+        self.vertex_edge = vec![NONE; self.points.len()];
+        for e in 0..self.corners.len() as u32 {
+            let v = self.corners[e as usize];
+            if v != GHOST {
+                self.vertex_edge[v as usize] = e;
+            }
+        }
+    }
+
+    /// Adds a vertex (not yet connected to the mesh); returns its id.
+    pub fn add_point(&mut self, p: Point) -> u32 {
+        self.points.push(p);
+        if !self.vertex_edge.is_empty() {
+            self.vertex_edge.push(NONE);
+        }
+        (self.points.len() - 1) as u32
+    }
+
+    #[inline(always)]
+    pub fn segment_of(&self, e: u32) -> u32 {
+        if self.segment.is_empty() {
+            NONE
+        } else {
+            self.segment[e as usize]
+        }
+    }
+
+    #[inline(always)]
+    pub fn is_segment(&self, e: u32) -> bool {
+        self.segment_of(e) != NONE
+    }
+
+    /// Marks both half-edges of the edge of `e` as lying on segment `id`.
+    pub fn set_segment(&mut self, e: u32, id: u32) {
+        self.track_segments();
+        let f = self.twin(e);
+        self.segment[e as usize] = id;
+        self.segment[f as usize] = id;
+    }
+
+    /// Makes the edge of `e` an ordinary edge again.
+    pub fn clear_segment(&mut self, e: u32) {
+        let f = self.twin(e);
+        self.segment[e as usize] = NONE;
+        self.segment[f as usize] = NONE;
+    }
+
+    /// The half-edge from `a` to `b`, if they are joined by an edge (needs vertex tracking).
+    pub fn find_edge(&self, a: u32, b: u32) -> Option<u32> {
+        let start = self.vertex_edge[a as usize];
+        if start == NONE {
+            return None;
+        }
+        let mut e = start;
+        loop {
+            if self.dest(e) == b {
+                return Some(e);
+            }
+            e = self.twin(prev(e));
+            if e == start {
+                return None;
+            }
+        }
+    }
+
+    /// After triangles were rewritten: every corner's outgoing half-edge and every new
+    /// half-edge's segment id (copied from its external twin, or none for an inner edge).
+    #[inline(always)]
+    fn refresh(&mut self, triangles: &[u32], inner: &[u32]) {
+        if !self.vertex_edge.is_empty() {
+            for &t in triangles {
+                for e in 3 * t..3 * t + 3 {
+                    let v = self.corners[e as usize];
+                    if v != GHOST {
+                        self.vertex_edge[v as usize] = e;
+                    }
+                }
+            }
+        }
+        if !self.segment.is_empty() {
+            self.segment.resize(self.corners.len(), NONE);
+            for &t in triangles {
+                for e in 3 * t..3 * t + 3 {
+                    let f = self.twins[e as usize];
+                    self.segment[e as usize] = if inner.contains(&e) { NONE } else { self.segment[f as usize] };
+                }
+            }
+        }
     }
 
     /// Number of triangle slots (real and ghost).
@@ -158,6 +270,7 @@ impl Mesh {
         self.link(3 * t + 1, 3 * t1 + 2);
         self.link(3 * t1 + 1, 3 * t2 + 2);
         self.link(3 * t2 + 1, 3 * t + 2);
+        self.refresh(&[t, t1, t2], &[3 * t + 1, 3 * t + 2, 3 * t1 + 1, 3 * t1 + 2, 3 * t2 + 1, 3 * t2 + 2]);
         [t, t1, t2]
     }
 
@@ -166,6 +279,7 @@ impl Mesh {
     /// opposite `p`: `(c, a, p)`, `(b, c, p)`, `(a, d, p)`, `(d, b, p)`. Returned in that order.
     pub fn split_edge(&mut self, e: u32, p: u32) -> [u32; 4] {
         let f = self.twin(e);
+        let split_segment = self.segment_of(e);
         let (t1, t2) = (triangle_of(e), triangle_of(f));
         let (a, b, c, d) = (self.origin(e), self.dest(e), self.apex(e), self.apex(f));
         let (tw_bc, tw_ca) = (self.twin(next(e)), self.twin(prev(e)));
@@ -182,6 +296,14 @@ impl Mesh {
         self.link(3 * t1 + 2, 3 * t2 + 1); // p-c
         self.link(3 * t2 + 2, 3 * t4 + 1); // p-b
         self.link(3 * t3 + 1, 3 * t4 + 2); // d-p
+        let (ap, pa, pb, bp) = (3 * t1 + 1, 3 * t3 + 2, 3 * t2 + 2, 3 * t4 + 1);
+        let inner = [ap, pa, pb, bp, 3 * t1 + 2, 3 * t2 + 1, 3 * t3 + 1, 3 * t4 + 2];
+        self.refresh(&[t1, t2, t3, t4], &inner);
+        if split_segment != NONE {
+            for h in [ap, pa, pb, bp] {
+                self.segment[h as usize] = split_segment;
+            }
+        }
         [t1, t2, t3, t4]
     }
 
@@ -202,6 +324,7 @@ impl Mesh {
         self.link(3 * t2, tw_qb);
         self.link(3 * t2 + 1, tw_bp);
         self.link(3 * t1 + 1, 3 * t2 + 2);
+        self.refresh(&[t1, t2], &[3 * t1 + 1, 3 * t2 + 2]);
         [t1, t2]
     }
 
