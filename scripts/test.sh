@@ -6,6 +6,8 @@ cd "$(dirname "$0")/.."
 cargo build --release --lib
 cargo test --all-targets
 if [ -d python/tests ]; then
-  [ -x .venv/bin/python ] || bash scripts/setup-python.sh
+  # Idempotent: also completes a .venv made before a new test dependency was added.
+  bash scripts/setup-python.sh
+  # The tests import the package from python/ (tests/conftest.py) and load this library.
   TRIANGLE_RS_LIBRARY="$PWD/target/release/libtriangle_rs.so" .venv/bin/python -m pytest -q python/tests
 fi

@@ -1,0 +1,107 @@
+"""The drop-in API of the PyPI `triangle` package (TRIANGLE-REFERENCE.md 5), on its own test
+cases, compared as sets (triangle-rs does not reproduce Triangle's element order)."""
+
+import numpy as np
+import pytest
+
+import triangle_rs as triangle
+
+from helpers import call_or_skip, canonical_triangles, signed_areas, undirected
+
+SQUARE = [[0, 0], [0, 1], [1, 1], [1, 0]]
+FIVE_POINTS = [[0, 0], [0, 1], [0.5, 0.5], [1, 1], [1, 0]]
+
+
+def test_delaunay():
+    triangles = triangle.delaunay(FIVE_POINTS)
+    assert triangles.dtype == np.int32 and triangles.shape == (4, 3)
+    assert canonical_triangles(triangles) == canonical_triangles([[1, 0, 2], [2, 4, 3], [4, 2, 0], [2, 3, 1]])
+
+
+def test_convex_hull():
+    segments = triangle.convex_hull(SQUARE)
+    assert segments.dtype == np.int32 and segments.shape == (4, 2)
+    assert undirected(segments) == undirected([[3, 0], [2, 3], [1, 2], [0, 1]])
+
+
+def test_voronoi():
+    vertices, edges, ray_origins, ray_directions = triangle.voronoi(FIVE_POINTS)
+    assert vertices.dtype == np.float64 and vertices.shape == (4, 2)
+    assert edges.dtype == np.int32 and edges.shape == (4, 2)
+    assert ray_origins.dtype == np.int32 and ray_origins.shape == (4,)
+    assert ray_directions.shape == (4, 2)
+    position = [tuple(v) for v in vertices.round(12).tolist()]
+    assert set(position) == {(0.0, 0.5), (1.0, 0.5), (0.5, 0.0), (0.5, 1.0)}
+    # Same edges and rays as the PyPI package's, by position rather than by number.
+    assert {frozenset((position[a], position[b])) for a, b in edges} == {
+        frozenset(pair)
+        for pair in [((0, 0.5), (0.5, 0)), ((0, 0.5), (0.5, 1)), ((1, 0.5), (0.5, 0)), ((1, 0.5), (0.5, 1))]
+    }
+    assert {(position[o], tuple(d)) for o, d in zip(ray_origins, ray_directions.round(12).tolist())} == {
+        ((0.0, 0.5), (-1.0, 0.0)),
+        ((1.0, 0.5), (1.0, 0.0)),
+        ((0.5, 0.0), (0.0, -1.0)),
+        ((0.5, 1.0), (0.0, 1.0)),
+    }
+
+
+def test_triangulate_returns_two_dimensional_arrays_of_the_present_fields():
+    out = triangle.triangulate({"vertices": FIVE_POINTS})
+    assert sorted(out) == ["triangles", "vertex_markers", "vertices"]
+    assert out["vertices"].dtype == np.float64 and out["vertices"].shape == (5, 2)
+    assert out["vertex_markers"].dtype == np.int32 and out["vertex_markers"].shape == (5, 1)
+    assert out["vertex_markers"].ravel().tolist() == [1, 1, 0, 1, 1]
+    assert out["triangles"].dtype == np.int32 and out["triangles"].shape == (4, 3)
+    out = triangle.triangulate({"vertices": FIVE_POINTS}, "cne")
+    assert {"segments", "segment_markers", "neighbors", "edges", "edge_markers"} <= set(out)
+    assert out["segment_markers"].shape == (4, 1) and out["edge_markers"].shape == (8, 1)
+    assert out["neighbors"].shape == (4, 3)
+
+
+def test_triangulate_square_with_maximum_area():
+    # The PyPI package's test_triangulate: 'a0.2' on the square. Triangle gives the centre and
+    # the four edge midpoints; triangle-rs may place its Steiner points elsewhere, so check what
+    # the switch promises.
+    out = call_or_skip(triangle.triangulate, {"vertices": SQUARE}, "a0.2")
+    areas = signed_areas(out["vertices"], out["triangles"])
+    assert np.all(areas > 0) and np.all(areas <= 0.2 + 1e-12) and np.isclose(areas.sum(), 1.0)
+    assert out["vertices"][:4].tolist() == SQUARE
+    on_boundary = np.any((out["vertices"] == 0) | (out["vertices"] == 1), axis=1)
+    assert out["vertex_markers"].ravel().tolist() == on_boundary.astype(int).tolist()
+
+
+def test_pslg_with_hole_and_regions_keys():
+    tri = {
+        "vertices": [[0, 0], [3, 0], [3, 3], [0, 3], [1, 1], [2, 1], [2, 2], [1, 2]],
+        "segments": [[0, 1], [1, 2], [2, 3], [3, 0], [4, 5], [5, 6], [6, 7], [7, 4]],
+        "segment_markers": [1, 1, 1, 1, 2, 2, 2, 2],
+        "holes": [[1.5, 1.5]],
+        "regions": [[0.5, 0.5, 3.0, 0.0]],
+    }
+    out = call_or_skip(triangle.triangulate, tri, "pA")
+    assert out["holes"].tolist() == [[1.5, 1.5]]
+    assert out["regions"].shape == (1, 4)
+    assert out["triangle_attributes"].shape == (len(out["triangles"]), 1)
+    assert np.isclose(signed_areas(out["vertices"], out["triangles"]).sum(), 8.0)
+
+
+def test_one_dimensional_marker_input_is_accepted():
+    out = triangle.triangulate({"vertices": FIVE_POINTS, "vertex_markers": [7, 7, 7, 7, 7]})
+    assert out["vertex_markers"].ravel().tolist() == [7] * 5
+    out = triangle.triangulate({"vertices": FIVE_POINTS, "vertex_markers": [[7], [7], [7], [7], [7]]})
+    assert out["vertex_markers"].ravel().tolist() == [7] * 5
+
+
+def test_unknown_key_raises_key_error():
+    with pytest.raises(KeyError):
+        triangle.triangulate({"vertices": FIVE_POINTS, "vertexes": FIVE_POINTS})
+
+
+def test_existing_code_runs_with_the_import_changed():
+    # The PyPI package's documented usage, unchanged but for the import line.
+    import triangle_rs as tr
+
+    A = dict(vertices=np.array(((0, 0), (1, 0), (1, 1), (0, 1))))
+    B = tr.triangulate(A)
+    assert len(B["triangles"]) == 2
+    assert isinstance(tr.delaunay(np.array(FIVE_POINTS)), np.ndarray)

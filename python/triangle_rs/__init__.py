@@ -1,0 +1,103 @@
+"""triangle-rs for Python: 2-D Delaunay triangulations and quality meshes (Triangle 1.6 compatible).
+
+Three APIs over one library call (``ctypes`` and ``numpy`` only; nothing is compiled at import):
+
+* Triangulate.jl style: ``out, vorout = triangulate("pq30a0.01", TriangulateIO(pointlist=...,
+  segmentlist=...))``, with a per-call ``unsuitable=`` callback for switch ``u``.
+* The PyPI ``triangle`` package's: ``triangulate({'vertices': ...}, 'pq')``, ``delaunay``,
+  ``convex_hull``, ``voronoi`` (``import triangle_rs as triangle`` runs existing code).
+* Keywords: ``mesh(points, segments=..., holes=..., min_angle=30, max_area=1e-3)``.
+
+Plots (matplotlib, imported only when used): ``plot_triangulateio`` and ``plot_in_out`` from
+:mod:`triangle_rs.plotting`, also reachable as attributes of this package.
+
+All indices are 0-based. Errors raise :class:`TriangulateError` with the library's message.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Mapping, Optional, Union, overload
+
+import numpy as np
+
+from . import compat, core
+from ._library import ENVIRONMENT_VARIABLE, Library, load_library
+from .compat import convex_hull, delaunay, voronoi
+from .core import TriangulateError, Unsuitable
+from .meshing import MeshResult, mesh, mesh_switches
+from .triangulateio import TriangulateIO, numberofedges, numberofpoints, numberofsegments, numberoftriangles
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "ENVIRONMENT_VARIABLE",
+    "Library",
+    "MeshResult",
+    "TriangulateError",
+    "TriangulateIO",
+    "Unsuitable",
+    "convex_hull",
+    "delaunay",
+    "library_path",
+    "mesh",
+    "mesh_switches",
+    "numberofedges",
+    "numberofpoints",
+    "numberofsegments",
+    "numberoftriangles",
+    "plot_in_out",
+    "plot_triangulateio",
+    "triangulate",
+    "voronoi",
+]
+
+
+@overload
+def triangulate(
+    switches: str, tio: TriangulateIO, *, unsuitable: Optional[Unsuitable] = None
+) -> tuple[TriangulateIO, TriangulateIO]: ...
+
+
+@overload
+def triangulate(
+    tri: Mapping[str, Any], opts: str = "", *, unsuitable: Optional[Unsuitable] = None
+) -> dict[str, np.ndarray]: ...
+
+
+def triangulate(
+    first: Union[str, Mapping[str, Any]],
+    second: Union[TriangulateIO, str] = "",
+    *,
+    unsuitable: Optional[Unsuitable] = None,
+) -> Union[tuple[TriangulateIO, TriangulateIO], dict[str, np.ndarray]]:
+    """Triangulates in either style, chosen by the arguments:
+
+    * ``triangulate(switches: str, tio: TriangulateIO) -> (out, vorout)``: Triangulate.jl style
+      (see :func:`triangle_rs.core.triangulate`);
+    * ``triangulate(tri: dict, opts: str = '') -> dict``: the PyPI ``triangle`` package's
+      (see :func:`triangle_rs.compat.triangulate`).
+
+    ``unsuitable(x1, y1, x2, y2, x3, y3, area) -> bool`` is the per-call test of switch ``u``.
+    """
+    if isinstance(first, str) and isinstance(second, TriangulateIO):
+        return core.triangulate(first, second, unsuitable=unsuitable)
+    if isinstance(first, Mapping) and isinstance(second, str):
+        return compat.triangulate(first, second, unsuitable=unsuitable)
+    raise TypeError(
+        "triangulate takes (switches: str, tio: TriangulateIO) or (tri: dict, opts: str = ''), "
+        f"got ({type(first).__name__}, {type(second).__name__})"
+    )
+
+
+def library_path() -> str:
+    """The path of the shared library in use (loads it if needed)."""
+    return load_library().path
+
+
+def __getattr__(name: str) -> Any:
+    # The plots need matplotlib, which `import triangle_rs` must not import.
+    if name in ("plot_triangulateio", "plot_in_out"):
+        from . import plotting
+
+        return getattr(plotting, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -1,0 +1,193 @@
+"""Finding and loading the triangle-rs shared library, and the C declarations of its ABI.
+
+Which library is loaded, in this order (the first that exists wins):
+
+1. the file named by the environment variable ``TRIANGLE_RS_LIBRARY`` (read once, at the first
+   triangulation; if it is set but cannot be loaded, that is an error: no silent fallback);
+2. the library bundled in the installed package (``pip install ./python`` puts it next to this file);
+3. in a source checkout, ``target/release`` and then ``target/debug`` of the repository.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import os
+import sys
+import threading
+from pathlib import Path
+
+ENVIRONMENT_VARIABLE = "TRIANGLE_RS_LIBRARY"
+
+
+def library_file_name() -> str:
+    """The file name cargo gives the library on this platform."""
+    if sys.platform.startswith("win"):
+        return "triangle_rs.dll"
+    if sys.platform == "darwin":
+        return "libtriangle_rs.dylib"
+    return "libtriangle_rs.so"
+
+
+class CTriangulateIO(ctypes.Structure):
+    """Triangle 1.6's ``struct triangulateio``, field for field (168 bytes on LP64 and LLP64)."""
+
+    _fields_ = [
+        ("pointlist", ctypes.POINTER(ctypes.c_double)),
+        ("pointattributelist", ctypes.POINTER(ctypes.c_double)),
+        ("pointmarkerlist", ctypes.POINTER(ctypes.c_int)),
+        ("numberofpoints", ctypes.c_int),
+        ("numberofpointattributes", ctypes.c_int),
+        ("trianglelist", ctypes.POINTER(ctypes.c_int)),
+        ("triangleattributelist", ctypes.POINTER(ctypes.c_double)),
+        ("trianglearealist", ctypes.POINTER(ctypes.c_double)),
+        ("neighborlist", ctypes.POINTER(ctypes.c_int)),
+        ("numberoftriangles", ctypes.c_int),
+        ("numberofcorners", ctypes.c_int),
+        ("numberoftriangleattributes", ctypes.c_int),
+        ("segmentlist", ctypes.POINTER(ctypes.c_int)),
+        ("segmentmarkerlist", ctypes.POINTER(ctypes.c_int)),
+        ("numberofsegments", ctypes.c_int),
+        ("holelist", ctypes.POINTER(ctypes.c_double)),
+        ("numberofholes", ctypes.c_int),
+        ("regionlist", ctypes.POINTER(ctypes.c_double)),
+        ("numberofregions", ctypes.c_int),
+        ("edgelist", ctypes.POINTER(ctypes.c_int)),
+        ("edgemarkerlist", ctypes.POINTER(ctypes.c_int)),
+        ("normlist", ctypes.POINTER(ctypes.c_double)),
+        ("numberofedges", ctypes.c_int),
+    ]
+
+
+#: ``int (*)(double ox, double oy, double dx, double dy, double ax, double ay, double area,
+#: void *user_data)``: the per-call unsuitable test of ``triangulate_reentrant``.
+UnsuitableCallback = ctypes.CFUNCTYPE(
+    ctypes.c_int,
+    ctypes.c_double,
+    ctypes.c_double,
+    ctypes.c_double,
+    ctypes.c_double,
+    ctypes.c_double,
+    ctypes.c_double,
+    ctypes.c_double,
+    ctypes.c_void_p,
+)
+
+_IO_POINTER = ctypes.POINTER(CTriangulateIO)
+
+
+class Library:
+    """A loaded triangle-rs library with the functions this package calls declared.
+
+    ``ctypes.CDLL`` releases the GIL for the duration of every foreign call, so calls from
+    several threads run in parallel.
+    """
+
+    def __init__(self, path: str | os.PathLike[str]):
+        self.path = str(path)
+        self._cdll = ctypes.CDLL(self.path)
+        try:
+            reentrant = self._cdll.triangulate_reentrant
+            last_error = self._cdll.triangulate_last_error
+            trifree = self._cdll.trifree
+        except AttributeError as missing:
+            raise OSError(
+                f"{self.path} is not a triangle-rs library: {missing}. The Python package needs "
+                "triangulate_reentrant, triangulate_last_error and trifree."
+            ) from None
+        reentrant.argtypes = [
+            ctypes.c_char_p,
+            _IO_POINTER,
+            _IO_POINTER,
+            _IO_POINTER,
+            UnsuitableCallback,
+            ctypes.c_void_p,
+            ctypes.POINTER(ctypes.c_int),
+        ]
+        reentrant.restype = ctypes.c_int
+        last_error.argtypes = []
+        last_error.restype = ctypes.c_char_p
+        trifree.argtypes = [ctypes.c_void_p]
+        trifree.restype = None
+        self._reentrant = reentrant
+        self._last_error = last_error
+        self._trifree = trifree
+
+    def triangulate(
+        self,
+        switches: bytes,
+        tin: CTriangulateIO,
+        tout: CTriangulateIO,
+        vorout: CTriangulateIO,
+        unsuitable: "ctypes._CFuncPtr | None",
+        cancel: ctypes.c_int,
+    ) -> tuple[int, str]:
+        """Runs ``triangulate_reentrant``; returns its code and, on failure, the message.
+
+        The message is read on the calling thread right after the call, because the library
+        keeps it per thread.
+        """
+        callback = unsuitable if unsuitable is not None else UnsuitableCallback()
+        code = self._reentrant(
+            switches,
+            ctypes.byref(tin),
+            ctypes.byref(tout),
+            ctypes.byref(vorout),
+            callback,
+            None,
+            ctypes.byref(cancel),
+        )
+        if code == 0:
+            return 0, ""
+        message = self._last_error()
+        return code, message.decode("utf-8", "replace") if message else ""
+
+    def free(self, address: int) -> None:
+        """Releases an array that the library allocated (``trifree``)."""
+        self._trifree(address)
+
+    def __repr__(self) -> str:
+        return f"Library({self.path!r})"
+
+
+def candidate_paths() -> list[Path]:
+    """Where the library is looked for when ``TRIANGLE_RS_LIBRARY`` is not set, in order."""
+    here = Path(__file__).resolve().parent
+    name = library_file_name()
+    candidates = [here / name]
+    repository = here.parent.parent
+    if (repository / "Cargo.toml").is_file():
+        candidates += [repository / "target" / "release" / name, repository / "target" / "debug" / name]
+    return candidates
+
+
+_lock = threading.Lock()
+_loaded: Library | None = None
+
+
+def load_library() -> Library:
+    """The library every call uses, loaded on first use (see the module docstring)."""
+    global _loaded
+    with _lock:
+        if _loaded is None:
+            _loaded = _find_and_load()
+        return _loaded
+
+
+def _find_and_load() -> Library:
+    override = os.environ.get(ENVIRONMENT_VARIABLE)
+    if override:
+        try:
+            return Library(override)
+        except OSError as error:
+            raise OSError(f"{ENVIRONMENT_VARIABLE}={override} cannot be loaded: {error}") from error
+    tried = candidate_paths()
+    for path in tried:
+        if path.is_file():
+            return Library(path)
+    listing = "".join(f"\n  {path}" for path in tried)
+    raise OSError(
+        f"The triangle-rs shared library was not found. Looked for:{listing}\n"
+        f"Install the package with `pip install ./python` (it builds and bundles the library), "
+        f"or build it with `cargo build --release --lib` and set {ENVIRONMENT_VARIABLE} to the "
+        f"path of {library_file_name()}."
+    )

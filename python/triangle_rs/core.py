@@ -1,0 +1,193 @@
+"""The Triangulate.jl-style call: ``triangulate(switches, tio) -> (out, vorout)``, and the machinery
+every API of this package goes through (errors, the per-call unsuitable callback, Ctrl-C)."""
+
+from __future__ import annotations
+
+import ctypes
+import threading
+from typing import Callable, Optional
+
+from ._library import CTriangulateIO, Library, UnsuitableCallback, load_library
+from .triangulateio import TriangulateIO, free_c, from_c, to_c
+
+#: ``unsuitable(x1, y1, x2, y2, x3, y3, area) -> bool``: the corners of a triangle (counter-
+#: clockwise) and its area; ``True`` asks for the triangle to be split (switch ``u``).
+Unsuitable = Callable[[float, float, float, float, float, float, float], bool]
+
+# Starting the worker thread that makes a call interruptible costs about a millisecond, more than
+# a small triangulation takes. So only calls that can run long use it: those that refine (the
+# library polls the cancel flag while refining) and those with large inputs.
+_REFINING_SWITCHES = frozenset("qauDL")
+_LARGE_INPUT_POINTS = 50_000
+
+# How often the waiting main thread wakes up to let Python run its signal handlers (Ctrl-C) while
+# the library works in another thread. Waking up costs nothing measurable; the call itself returns
+# as soon as the library does.
+_INTERRUPT_POLL_SECONDS = 0.1
+
+
+class TriangulateError(ValueError, RuntimeError):
+    """The library refused the input or failed; the message is the library's.
+
+    It derives from both ``ValueError`` and ``RuntimeError`` so that code written for the PyPI
+    ``triangle`` package, which raises ``ValueError`` for too few vertices and ``RuntimeError``
+    for failed triangulations, catches it unchanged.
+    """
+
+    def __init__(self, message: str, code: int = 1):
+        super().__init__(message)
+        self.code = code
+
+
+def triangulate(
+    switches: str,
+    tio: TriangulateIO,
+    *,
+    unsuitable: Optional[Unsuitable] = None,
+) -> tuple[TriangulateIO, TriangulateIO]:
+    """Triangulates, meshes or refines ``tio`` as Triangle does with ``switches``.
+
+    ``switches`` are Triangle's (for instance ``"pq30a0.01Q"``; see the README). Numbers may use
+    exponents (``a1e-5``). All indices are 0-based: ``z`` is always added. Returns
+    ``(out, vorout)``: the mesh, and the Voronoi diagram (empty unless ``v``).
+
+    ``unsuitable(x1, y1, x2, y2, x3, y3, area) -> bool`` is the user test of switch ``u``: it is
+    called for this call only (no global state), from the thread running the call. An exception
+    it raises stops the refinement and is re-raised here.
+
+    Raises :class:`TriangulateError` with the library's message when the input or the switches
+    are refused. The GIL is released while the library works. Ctrl-C (KeyboardInterrupt) asks the
+    library to stop refining and is re-raised once it has.
+    """
+    if not isinstance(switches, str):
+        raise TypeError(f"switches must be a str, got {type(switches).__name__}")
+    if not isinstance(tio, TriangulateIO):
+        raise TypeError(f"tio must be a TriangulateIO, got {type(tio).__name__}")
+    if unsuitable is not None and "u" not in switches:
+        raise ValueError("an unsuitable callback is used only with the switch 'u': add it to the switches")
+    return run(switches + "z", tio, unsuitable=unsuitable)
+
+
+def encode_switches(switches: str) -> bytes:
+    """The switch string as the library reads it (ASCII, no NUL)."""
+    if "\0" in switches:
+        raise ValueError("switches must not contain a NUL character")
+    try:
+        return switches.encode("ascii")
+    except UnicodeEncodeError:
+        raise ValueError(f"switches must be ASCII text, got {switches!r}") from None
+
+
+def run(
+    switches: str,
+    tio: TriangulateIO,
+    *,
+    unsuitable: Optional[Unsuitable] = None,
+    library: Optional[Library] = None,
+) -> tuple[TriangulateIO, TriangulateIO]:
+    """The raw call: ``switches`` exactly as given (no ``z`` added). Every API ends here."""
+    lib = library if library is not None else load_library()
+    encoded = encode_switches(switches)
+    c_in, keep_alive = to_c(tio)
+    c_out, c_vorout = CTriangulateIO(), CTriangulateIO()
+    cancel = ctypes.c_int(0)
+    callback_errors: list[BaseException] = []
+    c_callback = _wrap_unsuitable(unsuitable, cancel, callback_errors) if unsuitable is not None else None
+
+    def call(_inputs: list = keep_alive) -> tuple[int, str]:
+        # `_inputs` holds the input arrays as long as the library may read them, even when a
+        # second Ctrl-C abandons the call.
+        return lib.triangulate(encoded, c_in, c_out, c_vorout, c_callback, cancel)
+
+    may_run_long = bool(_REFINING_SWITCHES & set(switches)) or c_in.numberofpoints >= _LARGE_INPUT_POINTS
+    foreign = _ForeignCall(call, interruptible=may_run_long)
+    try:
+        code, message = foreign.run_interruptibly(cancel)
+        if callback_errors:
+            raise callback_errors[0]
+        if code != 0:
+            raise TriangulateError(message or f"triangulate failed (code {code})", code)
+        return from_c(c_out), from_c(c_vorout)
+    finally:
+        # An abandoned call still runs and will write into the output structs: leak them
+        # rather than free memory the library is about to use.
+        if foreign.finished():
+            free_c(c_out, lib.free)
+            free_c(c_vorout, lib.free)
+
+
+def _wrap_unsuitable(
+    unsuitable: Unsuitable, cancel: ctypes.c_int, errors: list[BaseException]
+) -> "ctypes._CFuncPtr":
+    if not callable(unsuitable):
+        raise TypeError("unsuitable must be callable as unsuitable(x1, y1, x2, y2, x3, y3, area)")
+
+    def trampoline(x1: float, y1: float, x2: float, y2: float, x3: float, y3: float, area: float, _user_data: int) -> int:
+        # ctypes cannot carry an exception through C: keep the first, stop the refinement
+        # through the cancel flag, and let `run` re-raise it.
+        if errors:
+            return 0
+        try:
+            return 1 if unsuitable(x1, y1, x2, y2, x3, y3, area) else 0
+        except BaseException as error:  # noqa: BLE001 - re-raised by `run`
+            errors.append(error)
+            cancel.value = 1
+            return 0
+
+    return UnsuitableCallback(trampoline)
+
+
+class _ForeignCall:
+    """One library call that Ctrl-C can stop.
+
+    Python handles signals only in the main thread and only between bytecodes, never inside a
+    foreign call. So on the main thread the call runs in a worker thread while the main thread
+    waits. A first KeyboardInterrupt sets the ``cancel`` flag that the library polls during
+    refinement; the main thread waits for the library to return (so that its outputs can be
+    freed) and then re-raises. A second KeyboardInterrupt stops waiting at once: the call is
+    abandoned (it finishes in the background and its outputs leak). Off the main thread, or when
+    the call is not ``interruptible`` (short calls), it simply runs on the calling thread.
+    """
+
+    def __init__(self, function: Callable[[], tuple[int, str]], interruptible: bool = True):
+        self._function = function
+        self._interruptible = interruptible
+        self._result: Optional[tuple[int, str]] = None
+        self._error: Optional[BaseException] = None
+        self._thread: Optional[threading.Thread] = None
+
+    def finished(self) -> bool:
+        return self._thread is None or not self._thread.is_alive()
+
+    def _work(self) -> None:
+        try:
+            self._result = self._function()
+        except BaseException as error:  # noqa: BLE001 - re-raised on the calling thread
+            self._error = error
+
+    def run_interruptibly(self, cancel: ctypes.c_int) -> tuple[int, str]:
+        if not self._interruptible or threading.current_thread() is not threading.main_thread():
+            return self._function()
+        self._thread = threading.Thread(target=self._work, name="triangle_rs-triangulate", daemon=True)
+        first_interrupt: Optional[KeyboardInterrupt] = None
+        started = False
+        while True:
+            # Ctrl-C may arrive anywhere in here, even inside Thread.start().
+            try:
+                if not started:
+                    started = True
+                    self._thread.start()
+                while self._thread.is_alive():
+                    self._thread.join(_INTERRUPT_POLL_SECONDS)
+                break
+            except KeyboardInterrupt as error:
+                cancel.value = 1
+                if first_interrupt is not None:
+                    raise  # the second one: abandon the call
+                first_interrupt = error
+        if first_interrupt is not None:
+            raise first_interrupt
+        if self._error is not None:
+            raise self._error
+        assert self._result is not None
+        return self._result
