@@ -4,17 +4,15 @@
 //! Layers, bottom up (see ARCHITECTURE.md):
 //! - [`geometry`]: exact predicates (`robust`) and constructions;
 //! - [`mesh`]: the triangle mesh topology in flat arrays;
-//! - [`delaunay`], [`voronoi`]: the algorithms;
-//! - [`options`], [`data`], [`pipeline`]: parsed switches, plain input/output data and the
-//!   driver that runs the algorithms the switches ask for;
+//! - [`algorithms`]: Delaunay triangulation, segment insertion, domain carving, Voronoi;
+//! - [`options`], [`data`], [`pipeline`], [`assemble`]: parsed switches, plain input/output data,
+//!   the driver that runs the algorithms the switches ask for, and the output numbering;
 //! - [`io`]: `struct triangulateio` conversion (and file formats);
 //! - [`ffi`]: the C ABI.
 
+pub mod algorithms;
 pub mod assemble;
-pub mod constrain;
 pub mod data;
-pub mod delaunay;
-pub mod domain;
 pub mod error;
 pub mod ffi;
 pub mod geometry;
@@ -22,7 +20,6 @@ pub mod io;
 pub mod mesh;
 pub mod options;
 pub mod pipeline;
-pub mod voronoi;
 
 pub use data::{Hooks, Input, Output, VoronoiDiagram, VoronoiOutput};
 pub use error::Error;

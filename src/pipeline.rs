@@ -2,15 +2,15 @@
 //! [`Output`] and [`VoronoiOutput`].
 
 use crate::assemble::FinishedMesh;
-use crate::constrain::Constrainer;
-use crate::domain::{carve, Domain};
+use crate::algorithms::constrain::Constrainer;
+use crate::algorithms::domain::{carve, Domain};
 use crate::data::{Hooks, Input, Output, VoronoiOutput};
-use crate::delaunay::{self, merge, order, Inserter, Triangulation};
+use crate::algorithms::delaunay::{self, merge, order, Inserter, Triangulation};
 use crate::error::Error;
 use crate::geometry::{Exact, Inexact, Point, Predicates};
 use crate::mesh::{Mesh, GHOST, NONE};
 use crate::options::{Algorithm, Options};
-use crate::voronoi::voronoi_diagram;
+use crate::algorithms::voronoi::voronoi_diagram;
 
 /// Seed of the randomized insertion order (`i`): fixed, so results are reproducible.
 const BRIO_SEED: u64 = 0x7269_616E_676C_6521;

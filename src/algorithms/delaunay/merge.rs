@@ -14,7 +14,7 @@
 //! tangents.
 
 use super::{triangulate_in_order, Triangulation};
-use crate::delaunay::order::hilbert_order;
+use crate::algorithms::delaunay::order::hilbert_order;
 use crate::geometry::{Point, Predicates};
 use crate::mesh::{Mesh, GHOST, NONE};
 
@@ -359,7 +359,7 @@ impl<P: Predicates> Merger<P> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::delaunay::order::splitmix64;
+    use crate::algorithms::delaunay::order::splitmix64;
     use crate::geometry::Exact;
 
     /// Valid, Delaunay, and with the triangle count Euler's formula gives for its hull.

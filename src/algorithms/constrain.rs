@@ -10,7 +10,7 @@
 
 use std::collections::VecDeque;
 
-use crate::delaunay::{Inserter, Location};
+use crate::algorithms::delaunay::{Inserter, Location};
 use crate::geometry::{Point, Predicates};
 use crate::mesh::{next, prev, triangle_of, GHOST, NONE};
 
@@ -287,7 +287,7 @@ fn along(a: Point, x: Point, b: Point) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::delaunay::order::{hilbert_order, splitmix64};
+    use crate::algorithms::delaunay::order::{hilbert_order, splitmix64};
     use crate::geometry::Exact;
 
     fn rand01(s: &mut u64) -> f64 {
@@ -304,7 +304,7 @@ mod tests {
             let n = 5 + (splitmix64(&mut s) % 40) as usize;
             let pts: Vec<Point> = (0..n).map(|_| [rand01(&mut s), rand01(&mut s)]).collect();
             let order = hilbert_order(&pts);
-            let tri = crate::delaunay::triangulate::<Exact>(pts, &order);
+            let tri = crate::algorithms::delaunay::triangulate::<Exact>(pts, &order);
             if tri.is_degenerate() {
                 continue;
             }

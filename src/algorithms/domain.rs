@@ -5,7 +5,7 @@
 //! from each hole point, and the infection spreads to neighbours across every edge that is not a
 //! segment. Regions spread the same way from their points.
 
-use crate::constrain::Constrainer;
+use crate::algorithms::constrain::Constrainer;
 use crate::geometry::{Point, Predicates};
 use crate::mesh::{triangle_of, Mesh};
 
