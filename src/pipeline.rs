@@ -8,7 +8,7 @@ use crate::data::{Hooks, Input, Output, VoronoiOutput};
 use crate::algorithms::delaunay::{self, merge, order, Inserter, Triangulation};
 use crate::error::Error;
 use crate::geometry::{Exact, Inexact, Point, Predicates};
-use crate::mesh::{Mesh, GHOST, NONE};
+use crate::mesh::{Mesh, GHOST, NONE, OUTSIDE};
 use crate::options::{Algorithm, Options};
 use crate::algorithms::voronoi::voronoi_diagram;
 
@@ -151,8 +151,7 @@ fn run<P: Predicates>(
         };
         meshed.mesh = cdt.inserter.mesh;
     } else {
-        let mesh = &meshed.mesh;
-        meshed.domain.in_mesh = (0..mesh.triangle_count()).map(|t| !mesh.is_ghost(t)).collect();
+        meshed.domain = Domain::whole(&mut meshed.mesh);
     }
     if options.pslg && !options.no_poly_output {
         output.alias_holes_and_regions = true;
@@ -213,7 +212,8 @@ fn write_outputs(options: &Options, input: &Input<'_>, meshed: &Meshed, mut outp
     // With no triangle at all (all points on a line) no vertex is left out, as in Triangle.
     let all_collinear = mesh.triangle_count() == 0 && !meshed.uses_segments;
     let mut vertex_in_mesh = vec![all_collinear; mesh.points.len()];
-    for (t, &inside) in meshed.domain.in_mesh.iter().enumerate() {
+    let triangle_in_mesh: Vec<bool> = mesh.tag.iter().map(|&tag| tag != OUTSIDE).collect();
+    for (t, &inside) in triangle_in_mesh.iter().enumerate() {
         if inside {
             for v in mesh.triangle(t as u32) {
                 if v != GHOST {
@@ -229,7 +229,7 @@ fn write_outputs(options: &Options, input: &Input<'_>, meshed: &Meshed, mut outp
         input_point_markers: &meshed.point_markers,
         all_collinear,
         vertex_in_mesh: &vertex_in_mesh,
-        triangle_in_mesh: &meshed.domain.in_mesh,
+        triangle_in_mesh: &triangle_in_mesh,
         segment_markers: (!mesh.segment.is_empty()).then_some(&meshed.segment_markers[..]),
         uses_segments: meshed.uses_segments,
     };
@@ -237,7 +237,7 @@ fn write_outputs(options: &Options, input: &Input<'_>, meshed: &Meshed, mut outp
     finished.write(options, &numbering, &mut output);
     if options.region_attributes {
         // `A`: one more triangle attribute, the region's (0 outside every region).
-        let attributes = numbering.triangles.iter().map(|&t| meshed.domain.region_attribute[t as usize]).collect();
+        let attributes = numbering.triangles.iter().map(|&t| meshed.domain.attribute[mesh.tag[t as usize] as usize]).collect();
         output.triangle_attribute_count = 1;
         output.triangle_attributes = (!options.no_element_output).then_some(attributes);
     }

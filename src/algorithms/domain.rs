@@ -7,14 +7,27 @@
 
 use crate::algorithms::constrain::Constrainer;
 use crate::geometry::{Point, Predicates};
-use crate::mesh::{triangle_of, Mesh};
+use crate::mesh::{triangle_of, Mesh, OUTSIDE};
 
-/// Per triangle slot: kept or not, regional attribute and regional maximum area (≤ 0: none).
+/// What the triangle tags ([`Mesh::tag`]) stand for: tag [`OUTSIDE`] for eaten triangles and
+/// ghosts, [`INSIDE`] for the domain outside every region, `FIRST_REGION + r` for region `r`.
 #[derive(Clone, Debug, Default)]
 pub struct Domain {
-    pub in_mesh: Vec<bool>,
-    pub region_attribute: Vec<f64>,
-    pub region_max_area: Vec<f64>,
+    /// Per tag: the regional attribute (0 outside every region).
+    pub attribute: Vec<f64>,
+    /// Per tag: the regional maximum area (≤ 0: none).
+    pub max_area: Vec<f64>,
+}
+
+pub const INSIDE: u32 = 1;
+pub const FIRST_REGION: u32 = 2;
+
+impl Domain {
+    /// The domain without regions: every non-ghost triangle is inside.
+    pub fn whole(mesh: &mut Mesh) -> Domain {
+        mesh.tag = (0..mesh.triangle_count()).map(|t| if mesh.is_ghost(t) { OUTSIDE } else { INSIDE }).collect();
+        Domain { attribute: vec![0.0; 2], max_area: vec![-1.0; 2] }
+    }
 }
 
 /// Visits every triangle reachable from `seeds` across non-segment edges: `try_visit(t)` visits
@@ -34,7 +47,7 @@ fn flood(mesh: &Mesh, seeds: Vec<u32>, mut try_visit: impl FnMut(u32) -> bool) {
     }
 }
 
-/// Carves the domain out of a constrained triangulation.
+/// Carves the domain out of a constrained triangulation: sets the triangle tags.
 ///
 /// `holes` are (x, y) pairs; `regions` are (x, y, attribute, max area) rows.
 pub fn carve<P: Predicates>(
@@ -43,14 +56,14 @@ pub fn carve<P: Predicates>(
     holes: &[f64],
     regions: &[f64],
 ) -> Domain {
+    let domain = Domain::whole(&mut cdt.inserter.mesh);
     let slots = cdt.inserter.mesh.triangle_count() as usize;
-    let mut in_mesh: Vec<bool> = (0..slots as u32).map(|t| !cdt.inserter.mesh.is_ghost(t)).collect();
     let mut seeds = Vec::new();
     if !keep_convex_hull {
         // Real triangles along hull edges that are not segments.
         let mesh = &cdt.inserter.mesh;
         for t in 0..slots as u32 {
-            if !in_mesh[t as usize] {
+            if mesh.tag[t as usize] == OUTSIDE {
                 continue;
             }
             for e in 3 * t..3 * t + 3 {
@@ -66,24 +79,24 @@ pub fn carve<P: Predicates>(
             seeds.push(t);
         }
     }
-    flood(&cdt.inserter.mesh, seeds, |t| std::mem::take(&mut in_mesh[t as usize]));
+    let mut tag = std::mem::take(&mut cdt.inserter.mesh.tag);
+    flood(&cdt.inserter.mesh, seeds, |t| std::mem::replace(&mut tag[t as usize], OUTSIDE) != OUTSIDE);
 
-    let mut region_attribute = vec![0.0; slots];
-    let mut region_max_area = vec![-1.0; slots];
-    for region in regions.chunks_exact(4) {
+    let mut domain = domain;
+    for (r, region) in regions.chunks_exact(4).enumerate() {
         let point: Point = [region[0], region[1]];
+        let region_tag = FIRST_REGION + r as u32;
+        domain.attribute.push(region[2]);
+        domain.max_area.push(region[3]);
         let Some(t) = cdt.triangle_at(point) else { continue };
-        let mesh = &cdt.inserter.mesh;
-        let mut seen = vec![false; slots];
-        flood(mesh, vec![t], |u| {
-            let enter = in_mesh[u as usize] && !seen[u as usize];
+        flood(&cdt.inserter.mesh, vec![t], |u| {
+            let enter = tag[u as usize] != OUTSIDE && tag[u as usize] != region_tag;
             if enter {
-                seen[u as usize] = true;
-                region_attribute[u as usize] = region[2];
-                region_max_area[u as usize] = region[3];
+                tag[u as usize] = region_tag;
             }
             enter
         });
     }
-    Domain { in_mesh, region_attribute, region_max_area }
+    cdt.inserter.mesh.tag = tag;
+    domain
 }

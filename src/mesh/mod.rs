@@ -57,7 +57,14 @@ pub struct Mesh {
     /// Per vertex: a half-edge that starts at it, or [`NONE`]. Empty while not tracked; see
     /// [`Mesh::track_vertex_edges`].
     pub vertex_edge: Vec<u32>,
+    /// Per triangle: a tag (which part of the domain it belongs to; [`OUTSIDE`] for ghosts and
+    /// eaten triangles). Empty while not tracked. New triangles inherit the tag of the triangle
+    /// they were split from; flips never cross segments, which bound the tagged parts.
+    pub tag: Vec<u32>,
 }
+
+/// The tag of triangles outside the domain.
+pub const OUTSIDE: u32 = 0;
 
 impl Mesh {
     pub fn with_points(points: Vec<Point>) -> Mesh {
@@ -68,6 +75,7 @@ impl Mesh {
             twins: Vec::with_capacity(capacity),
             segment: Vec::new(),
             vertex_edge: Vec::new(),
+            tag: Vec::new(),
         }
     }
 
@@ -271,6 +279,10 @@ impl Mesh {
         self.link(3 * t1 + 1, 3 * t2 + 2);
         self.link(3 * t2 + 1, 3 * t + 2);
         self.refresh(&[t, t1, t2], &[3 * t + 1, 3 * t + 2, 3 * t1 + 1, 3 * t1 + 2, 3 * t2 + 1, 3 * t2 + 2]);
+        if !self.tag.is_empty() {
+            let tag = self.tag[t as usize];
+            self.tag.extend_from_slice(&[tag, tag]);
+        }
         [t, t1, t2]
     }
 
@@ -299,6 +311,12 @@ impl Mesh {
         let (ap, pa, pb, bp) = (3 * t1 + 1, 3 * t3 + 2, 3 * t2 + 2, 3 * t4 + 1);
         let inner = [ap, pa, pb, bp, 3 * t1 + 2, 3 * t2 + 1, 3 * t3 + 1, 3 * t4 + 2];
         self.refresh(&[t1, t2, t3, t4], &inner);
+        if !self.tag.is_empty() {
+            // t1 and t2 now lie on e's side, t3 and t4 on its twin's.
+            let (e_side, f_side) = (self.tag[t1 as usize], self.tag[t2 as usize]);
+            self.tag[t2 as usize] = e_side;
+            self.tag.extend_from_slice(&[f_side, f_side]);
+        }
         if split_segment != NONE {
             for h in [ap, pa, pb, bp] {
                 self.segment[h as usize] = split_segment;
