@@ -4,6 +4,7 @@
 use crate::assemble::FinishedMesh;
 use crate::algorithms::constrain::Constrainer;
 use crate::algorithms::domain::{carve, Domain};
+use crate::algorithms::refine::{Quality, Refiner, VertexKind};
 use crate::data::{Hooks, Input, Output, VoronoiOutput};
 use crate::algorithms::delaunay::{self, merge, order, Inserter, Triangulation};
 use crate::error::Error;
@@ -19,10 +20,6 @@ const BRIO_SEED: u64 = 0x7269_616E_676C_6521;
 fn check_supported(options: &Options) -> Result<(), Error> {
     let unsupported = [
         (options.refine, "The `r` switch (refining a mesh)"),
-        (options.min_angle.is_some(), "The `q` switch (quality meshing)"),
-        (options.max_area.is_some() || options.variable_area, "The `a` switch (area constraints)"),
-        (options.user_test, "The `u` switch (user refinement test)"),
-        (options.conforming_delaunay, "The `D` switch (conforming Delaunay)"),
         (options.second_order, "The `o2` switch (second-order triangles)"),
         (options.split_segments, "The `s` switch (segment splitting)"),
         (options.weighted != 0, "The `w`/`W` switches (weighted triangulation)"),
@@ -96,7 +93,7 @@ struct Meshed {
 fn run<P: Predicates>(
     options: &Options,
     input: &Input<'_>,
-    _hooks: &Hooks<'_>,
+    hooks: &Hooks<'_>,
     points: Vec<Point>,
 ) -> Result<(Output, VoronoiOutput), Error> {
     let n = points.len();
@@ -125,12 +122,13 @@ fn run<P: Predicates>(
         mesh,
     };
     let degenerate = meshed.mesh.triangle_count() == 0;
-    if !degenerate && (options.pslg || options.convex_hull) {
+    if !degenerate && (options.pslg || options.convex_hull || options.quality()) {
         let mut cdt = Constrainer::new(Inserter::<P>::new(std::mem::take(&mut meshed.mesh)));
         if options.pslg {
             insert_segments(&mut cdt, input, &duplicate_of, base, &mut meshed.segment_markers, &mut output.warnings);
         }
-        if options.convex_hull {
+        if options.convex_hull || !options.pslg {
+            // `c`, or refinement of a point set: the hull edges are segments (marker 1).
             cdt.mark_hull(meshed.segment_markers.len() as u32);
             meshed.segment_markers.push(1);
         }
@@ -141,15 +139,30 @@ fn run<P: Predicates>(
                 let (a, b) = (meshed.point_attributes[from + i], meshed.point_attributes[to + i]);
                 meshed.point_attributes.push(a + c.t * (b - a));
             }
-            meshed.point_markers.push(0);
         }
         let holes: &[f64] = if options.ignore_holes { &[] } else { input.holes };
         meshed.domain = if options.pslg {
             carve(&mut cdt, options.convex_hull, holes, input.regions)
         } else {
-            carve(&mut cdt, true, &[], &[])
+            Domain::whole(&mut cdt.inserter.mesh)
         };
+        if options.quality() {
+            let quality = Quality {
+                min_angle: options.min_angle,
+                max_area: options.max_area,
+                variable_area: options.variable_area,
+                user_test: if options.user_test { hooks.unsuitable } else { None },
+                no_steiner_on_segments: options.no_steiner_on_segments,
+                max_steiner: options.max_steiner,
+                cancel: hooks.cancel,
+            };
+            let kinds = vec![VertexKind::Input; cdt.inserter.mesh.points.len()];
+            let report = Refiner::new(options.conforming_delaunay, &mut cdt, &meshed.domain, &quality, kinds, &mut meshed.point_attributes, k).run();
+            output.warnings.extend(report.warnings);
+        }
         meshed.mesh = cdt.inserter.mesh;
+        // New vertices (crossings, Steiner points) have no input marker.
+        meshed.point_markers.resize(meshed.mesh.points.len(), 0);
     } else {
         meshed.domain = Domain::whole(&mut meshed.mesh);
     }

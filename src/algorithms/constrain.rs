@@ -24,6 +24,9 @@ pub struct Crossing {
     pub t: f64,
 }
 
+/// Crossings closer than this (relative to the lengths involved) to a vertex snap to it.
+const SNAP_RELATIVE: f64 = 1e-12;
+
 /// Where two segments cross.
 enum CrossingPoint {
     /// A new vertex.
@@ -167,13 +170,18 @@ impl<P: Predicates> Constrainer<P> {
         let dv = self.orient(a, b, v);
         let t = du / (du - dv);
         let p = [pu[0] + t * (pv[0] - pu[0]), pu[1] + t * (pv[1] - pu[1])];
-        // Rounding can put the crossing on a vertex (three segments through one point), or so
-        // close to the edge's quadrilateral's side that splitting there would invert a triangle.
-        if p == pu {
-            return CrossingPoint::Existing(u);
-        }
-        if p == pv {
-            return CrossingPoint::Existing(v);
+        // A crossing within rounding distance of a vertex is that vertex: three segments through
+        // one point, or a segment through a vertex that the exact test finds off by an ulp. A new
+        // vertex there would create a feature far smaller than the input's, which refinement
+        // could only resolve with a cascade of tiny triangles.
+        let (pa, pb) = (self.pt(a), self.pt(b));
+        let dist2 = |q: Point| (q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2);
+        let scale2 = dist2(pu).max(dist2(pv)).max(dist2(pa)).max(dist2(pb));
+        let snap2 = scale2 * SNAP_RELATIVE * SNAP_RELATIVE;
+        for (w, at_crossed_end) in [(u, true), (v, true), (a, false), (b, false)] {
+            if dist2(self.pt(w)) <= snap2 {
+                return if at_crossed_end { CrossingPoint::Existing(w) } else { CrossingPoint::ThroughVertex(w) };
+            }
         }
         let (c, d) = (mesh.apex(e), mesh.apex(mesh.twin(e)));
         let (pc, pd) = (self.pt(c), self.pt(d));

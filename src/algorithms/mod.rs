@@ -4,4 +4,5 @@
 pub mod constrain;
 pub mod delaunay;
 pub mod domain;
+pub mod refine;
 pub mod voronoi;

@@ -527,10 +527,10 @@ pub struct MeshStats {
     pub boundary: BTreeSet<usize>,
 }
 
-type Directed = HashMap<(usize, usize), (usize, usize)>;
+pub type Directed = HashMap<(usize, usize), (usize, usize)>;
 
 /// Directed edge (a, b) → (triangle, corner opposite it); fails on a repeated directed edge.
-fn directed_edges(triangles: &[[usize; 3]]) -> Result<Directed, String> {
+pub fn directed_edges(triangles: &[[usize; 3]]) -> Result<Directed, String> {
     let mut edges = HashMap::with_capacity(triangles.len() * 3);
     for (t, c) in triangles.iter().enumerate() {
         for k in 0..3 {

@@ -6,8 +6,11 @@
 pub mod call;
 pub mod checks;
 pub mod points;
+pub mod pslg;
+pub mod pslg_checks;
 pub mod reference;
 pub mod rng;
+pub mod timing;
 
 #[allow(unused_imports)]
 pub use call::{ours, ours_with, MeshInput, Triangulation};

@@ -1,0 +1,755 @@
+//! Delaunay refinement: quality meshing with angle, area and user constraints.
+//!
+//! Ruppert's algorithm ("A Delaunay refinement algorithm for quality 2-dimensional mesh
+//! generation", 1995) as refined by Shewchuk ("Delaunay refinement algorithms for triangular mesh
+//! generation", 2002):
+//! - a subsegment is *encroached* when a vertex lies strictly inside its diametral circle; in a
+//!   constrained Delaunay triangulation it suffices to look at the two apices beside it. Encroached
+//!   subsegments are split first, at their midpoints, or — next to an input vertex shared with
+//!   another segment — at a power-of-two distance from it ("concentric shells", Shewchuk §4.1),
+//!   which keeps small input angles from causing endless splitting;
+//! - a bad triangle (an angle below θ, an area above the bound, or the user's test) is split at its
+//!   circumcentre or, when that is closer to the shortest edge, at Üngör's off-centre ("Off-centers:
+//!   a new type of Steiner points for computing size-optimal quality-guaranteed Delaunay
+//!   triangulations", 2004), which needs fewer vertices;
+//! - a new point that would encroach a subsegment is rejected, and the subsegment is split instead
+//!   (Ruppert's rule); the bad triangle is queued again.
+//!
+//! Worst triangles go first. Termination: for θ ≤ 28.6° the algorithm terminates (Shewchuk
+//! 2002); beyond, it may not, so every split checks that it makes an edge no shorter than a floor
+//! far above the floating-point resolution of the domain, skips (and reports) a triangle or
+//! segment it cannot split, and stops at the Steiner-point budget (`S`) or when cancelled.
+
+use std::collections::{BinaryHeap, HashSet, VecDeque};
+
+use crate::algorithms::constrain::Constrainer;
+use crate::algorithms::delaunay::Location;
+use crate::algorithms::domain::Domain;
+use crate::data::UnsuitableFn;
+use crate::geometry::{circumcenter, Point, Predicates};
+use crate::mesh::{next, prev, triangle_of, GHOST, NONE, OUTSIDE};
+
+/// The largest minimum angle for which Delaunay refinement is proven to terminate.
+pub const GUARANTEED_ANGLE: f64 = 28.6;
+/// Above that angle, refinement first runs to the guaranteed angle, then goes on toward the
+/// asked one with a budget of this many Steiner points per triangle it had then (plus a few).
+const UNGUARANTEED_BUDGET_PER_TRIANGLE: u64 = 2;
+
+/// What makes a triangle bad, and what may be done about it.
+pub struct Quality<'a> {
+    /// Minimum angle in degrees (`q`).
+    pub min_angle: Option<f64>,
+    /// Global maximum area (`a<x>`).
+    pub max_area: Option<f64>,
+    /// Regional / per-triangle maximum areas (`a`), from the domain's tags.
+    pub variable_area: bool,
+    /// The user's test (`u`).
+    pub user_test: Option<&'a UnsuitableFn<'a>>,
+    /// `Y` (1): no Steiner points on boundary segments; `YY` (2): on any segment.
+    pub no_steiner_on_segments: u8,
+    /// `S`: the Steiner-point budget.
+    pub max_steiner: Option<u64>,
+    /// Polled now and then; `true` stops refinement with a valid mesh.
+    pub cancel: Option<&'a (dyn Fn() -> bool + Sync + 'a)>,
+}
+
+/// How a vertex came to be: it decides where segments next to it are split.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum VertexKind {
+    /// An input vertex (or a crossing of input segments).
+    Input,
+    /// A vertex inserted on a segment by refinement.
+    OnSegment,
+    /// A vertex inserted inside the domain by refinement.
+    Free,
+}
+
+/// A queued bad triangle, worst first.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct BadTriangle {
+    /// Larger is worse.
+    badness: f64,
+    corners: [u32; 3],
+}
+
+impl Eq for BadTriangle {}
+impl PartialOrd for BadTriangle {
+    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
+    }
+}
+impl Ord for BadTriangle {
+    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
+        self.badness.total_cmp(&other.badness).then(self.corners.cmp(&other.corners))
+    }
+}
+
+/// Where the straight walk from a bad triangle toward its new point ends.
+enum Walk {
+    /// The point lies in (or on the boundary of) the domain at this location.
+    Found(Location),
+    /// A segment (this half-edge) separates the point from the triangle.
+    Blocked(u32),
+    /// The point lies outside the domain (or the walk could not settle).
+    Lost,
+}
+
+/// The outcome of a refinement run.
+#[derive(Debug, Default)]
+pub struct Report {
+    pub steiner_points: u64,
+    pub warnings: Vec<String>,
+}
+
+pub struct Refiner<'r, 'q, P: Predicates> {
+    cdt: &'r mut Constrainer<P>,
+    domain: &'r Domain,
+    quality: &'r Quality<'q>,
+    /// Per vertex.
+    pub kinds: Vec<VertexKind>,
+    /// Per vertex, `attribute_count` values (new vertices are interpolated).
+    pub attributes: &'r mut Vec<f64>,
+    attribute_count: usize,
+    cos2_min_angle: f64,
+    /// cos² of the lens angle 180° − 2θ; `None`: diametral circles (`D`).
+    lens_cos2: Option<f64>,
+    /// `D`: encroachment by diametral circles, so that the result is truly Delaunay.
+    conforming: bool,
+    /// Off-centre distance from the shortest edge, as a multiple of its length.
+    off_center: f64,
+    /// No edge is made shorter than this (squared): far above the resolution of doubles here.
+    floor2: f64,
+    /// Subsegments to split: ends, and whether a rejected point encroached it (split regardless).
+    encroached: VecDeque<(u32, u32, bool)>,
+    /// Where refinement stops (the `S` budget, or the budget beyond the guaranteed angle).
+    steiner_limit: Option<u64>,
+    bad: BinaryHeap<BadTriangle>,
+    unsplittable: HashSet<(u32, u32)>,
+    report: Report,
+    /// Bad triangles and segments left alone because splitting them would make too short an edge.
+    skipped: u64,
+    stopped: bool,
+    polls: u32,
+}
+
+impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
+    pub fn new(
+        conforming: bool,
+        cdt: &'r mut Constrainer<P>,
+        domain: &'r Domain,
+        quality: &'r Quality<'q>,
+        kinds: Vec<VertexKind>,
+        attributes: &'r mut Vec<f64>,
+        attribute_count: usize,
+    ) -> Self {
+        let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
+        for p in &cdt.inserter.mesh.points {
+            for i in 0..2 {
+                lo[i] = lo[i].min(p[i]);
+                hi[i] = hi[i].max(p[i]);
+            }
+        }
+        let extent = (hi[0] - lo[0]).abs().max((hi[1] - lo[1]).abs()).max(lo[0].abs().max(hi[0].abs()) * 1e-3).max(f64::MIN_POSITIVE);
+        let floor = extent * 2f64.powi(-40);
+        let mut refiner = Refiner {
+            cdt,
+            domain,
+            quality,
+            kinds,
+            attributes,
+            attribute_count,
+            cos2_min_angle: 2.0,
+            lens_cos2: None,
+            conforming,
+            off_center: f64::INFINITY,
+            floor2: floor * floor,
+            steiner_limit: quality.max_steiner,
+            encroached: VecDeque::new(),
+            bad: BinaryHeap::new(),
+            unsplittable: HashSet::new(),
+            report: Report::default(),
+            skipped: 0,
+            stopped: false,
+            polls: 0,
+        };
+        refiner.set_angle(quality.min_angle.unwrap_or(0.0));
+        refiner
+    }
+
+    fn pt(&self, v: u32) -> Point {
+        self.cdt.inserter.mesh.point(v)
+    }
+
+    fn inside(&self, t: u32) -> bool {
+        self.cdt.inserter.mesh.tag[t as usize] != OUTSIDE
+    }
+
+    /// Refines until no subsegment is encroached and no triangle is bad (or a limit stops it).
+    pub fn run(mut self) -> Report {
+        let target = self.quality.min_angle;
+        let unguaranteed = target.is_some_and(|angle| angle > GUARANTEED_ANGLE);
+        if unguaranteed {
+            self.set_angle(GUARANTEED_ANGLE);
+        }
+        self.refine_all();
+        if let (true, Some(angle)) = (unguaranteed, target) {
+            // Beyond the proven bound refinement may never end (it can cascade into ever smaller
+            // triangles); go on toward the asked angle with a budget proportional to the mesh.
+            self.set_angle(angle);
+            let triangles = (0..self.cdt.inserter.mesh.triangle_count()).filter(|&t| self.inside(t)).count() as u64;
+            let budget = self.report.steiner_points + UNGUARANTEED_BUDGET_PER_TRIANGLE * triangles + 16;
+            self.steiner_limit = Some(self.quality.max_steiner.map_or(budget, |limit| limit.min(budget)));
+            self.refine_all();
+            if self.report.steiner_points >= budget && !self.bad.is_empty() {
+                self.report.warnings.push(format!(
+                    "A minimum angle of {angle}° is above {GUARANTEED_ANGLE}°, the largest for which Delaunay \
+                     refinement is guaranteed to terminate, and this input needs more: refinement stopped after \
+                     {} Steiner points with some angles below {angle}° (the mesh is valid).",
+                    self.report.steiner_points
+                ));
+            }
+        }
+        if self.skipped > 0 {
+            self.report.warnings.push(format!(
+                "Refinement left {} triangles or segments unsplit: the precision of floating-point numbers is \
+                 exhausted near some vertices. The mesh is valid but may have angles below the minimum there.",
+                self.skipped
+            ));
+        }
+        self.report
+    }
+
+    /// Sets the angle bound θ (degrees): the bad-angle test, the lens and the off-centre.
+    fn set_angle(&mut self, degrees: f64) {
+        let theta = degrees.clamp(0.0, 60.0).to_radians();
+        let cos = theta.cos();
+        self.cos2_min_angle = if theta > 0.0 { cos * cos } else { 2.0 };
+        // With no angle bound the lens would be empty; diametral circles then keep the angles
+        // of area-driven refinement from degrading (Triangle splits no segment there).
+        self.lens_cos2 =
+            (theta > 0.0 && theta < std::f64::consts::FRAC_PI_4 && !self.conforming).then(|| (2.0 * theta).cos().powi(2));
+        self.off_center = if theta > 0.0 { 0.475 * ((1.0 + cos) / (1.0 - cos)).sqrt() } else { f64::INFINITY };
+    }
+
+    /// Splits encroached subsegments, then bad triangles, until none is left or a limit stops.
+    fn refine_all(&mut self) {
+        let mesh = &self.cdt.inserter.mesh;
+        let segments: Vec<u32> =
+            (0..mesh.corners.len() as u32).filter(|&e| mesh.is_segment(e) && e < mesh.twin(e)).collect();
+        for e in segments {
+            self.check_segment(e);
+        }
+        self.split_encroached();
+        self.bad.clear();
+        for t in 0..self.cdt.inserter.mesh.triangle_count() {
+            if self.inside(t) {
+                self.check_triangle(t);
+            }
+        }
+        while !self.should_stop() {
+            let Some(bad) = self.bad.pop() else { break };
+            let [a, b, c] = bad.corners;
+            let Some(e) = self.cdt.inserter.mesh.find_edge(a, b) else { continue };
+            if self.cdt.inserter.mesh.apex(e) != c {
+                continue; // gone since it was queued
+            }
+            self.split_triangle(triangle_of(e), bad);
+            self.split_encroached();
+        }
+    }
+
+    fn should_stop(&mut self) -> bool {
+        if self.stopped {
+            return true;
+        }
+        if let Some(limit) = self.steiner_limit {
+            if self.report.steiner_points >= limit {
+                self.stopped = true;
+            }
+        }
+        self.polls = self.polls.wrapping_add(1);
+        if self.polls % 64 == 0 && self.quality.cancel.is_some_and(|cancelled| cancelled()) {
+            self.report.warnings.push("Refinement was cancelled; the mesh is valid but not refined.".into());
+            self.stopped = true;
+        }
+        self.stopped
+    }
+
+    /// Whether the segment of half-edge `e` may receive Steiner points (`Y`, `YY`).
+    fn may_split(&self, e: u32) -> bool {
+        let mesh = &self.cdt.inserter.mesh;
+        match self.quality.no_steiner_on_segments {
+            0 => true,
+            1 => self.inside(triangle_of(e)) && self.inside(triangle_of(mesh.twin(e))),
+            _ => false,
+        }
+    }
+
+    /// Whether `w` encroaches subsegment `u`–`v`: lies in its diametral lens (without `D`:
+    /// `u`–`v` subtends at least 180° − 2θ at `w`, Shewchuk 2002 §3.2, which inserts fewer
+    /// vertices), else strictly inside its diametral circle.
+    fn encroaches(&self, u: u32, v: u32, w: Point) -> bool {
+        let (pu, pv) = (self.pt(u), self.pt(v));
+        let (a, b) = ([pu[0] - w[0], pu[1] - w[1]], [pv[0] - w[0], pv[1] - w[1]]);
+        let dot = a[0] * b[0] + a[1] * b[1];
+        match self.lens_cos2 {
+            Some(cos2) => dot < 0.0 && dot * dot >= cos2 * (a[0] * a[0] + a[1] * a[1]) * (b[0] * b[0] + b[1] * b[1]),
+            None => dot < 0.0,
+        }
+    }
+
+    /// Queues the subsegment of half-edge `e` if an apex beside it encroaches it.
+    fn check_segment(&mut self, e: u32) {
+        let mesh = &self.cdt.inserter.mesh;
+        let (u, v) = (mesh.origin(e), mesh.dest(e));
+        for h in [e, mesh.twin(e)] {
+            let w = mesh.apex(h);
+            if w != GHOST && self.inside(triangle_of(h)) && self.encroaches(u, v, mesh.point(w)) {
+                if self.may_split(e) && !self.unsplittable.contains(&(u.min(v), u.max(v))) {
+                    self.encroached.push_back((u, v, false));
+                }
+                return;
+            }
+        }
+    }
+
+    fn split_encroached(&mut self) {
+        while let Some((u, v, forced)) = self.encroached.pop_front() {
+            if self.should_stop() {
+                self.encroached.clear();
+                return;
+            }
+            let mesh = &self.cdt.inserter.mesh;
+            let Some(e) = mesh.find_edge(u, v) else { continue };
+            if !mesh.is_segment(e) {
+                continue;
+            }
+            let still = [e, mesh.twin(e)].iter().any(|&h| {
+                let w = mesh.apex(h);
+                w != GHOST && self.inside(triangle_of(h)) && self.encroaches(u, v, mesh.point(w))
+            });
+            if forced || still {
+                self.split_segment(e);
+            }
+        }
+    }
+
+    /// Where to split subsegment `u`–`v` (parameter from `u`): the midpoint, or a power-of-two
+    /// distance from an end that is an input vertex shared with another segment.
+    fn split_parameter(&self, u: u32, v: u32) -> f64 {
+        let shared = |x: u32| {
+            if self.kinds[x as usize] == VertexKind::OnSegment {
+                return false;
+            }
+            let mesh = &self.cdt.inserter.mesh;
+            let start = mesh.vertex_edge[x as usize];
+            let (mut e, mut count) = (start, 0);
+            loop {
+                if mesh.is_segment(e) {
+                    count += 1;
+                }
+                e = mesh.twin(prev(e));
+                if e == start {
+                    break;
+                }
+            }
+            count >= 2
+        };
+        let (su, sv) = (shared(u), shared(v));
+        if su == sv {
+            return 0.5;
+        }
+        let (pu, pv) = (self.pt(u), self.pt(v));
+        let length = ((pv[0] - pu[0]).powi(2) + (pv[1] - pu[1]).powi(2)).sqrt();
+        let mut d = 2f64.powi(length.log2().round() as i32);
+        while d > length * (2.0 / 3.0) {
+            d *= 0.5;
+        }
+        while d < length / 3.0 {
+            d *= 2.0;
+        }
+        if su {
+            d / length
+        } else {
+            1.0 - d / length
+        }
+    }
+
+    /// Splits the subsegment of half-edge `e`, unless that makes an edge shorter than the floor.
+    fn split_segment(&mut self, e: u32) {
+        let mesh = &self.cdt.inserter.mesh;
+        let (u, v) = (mesh.origin(e), mesh.dest(e));
+        let t = self.split_parameter(u, v);
+        let (pu, pv) = (self.pt(u), self.pt(v));
+        let p = [pu[0] + t * (pv[0] - pu[0]), pu[1] + t * (pv[1] - pu[1])];
+        let too_short = |q: Point, r: Point| (q[0] - r[0]).powi(2) + (q[1] - r[1]).powi(2) < self.floor2;
+        if too_short(p, pu) || too_short(p, pv) || p == pu || p == pv {
+            self.unsplittable.insert((u.min(v), u.max(v)));
+            self.skipped += 1;
+            return;
+        }
+        let vertex = self.new_vertex(p, VertexKind::OnSegment, |attrs, i| {
+            attrs[u as usize * i.1 + i.0] + t * (attrs[v as usize * i.1 + i.0] - attrs[u as usize * i.1 + i.0])
+        });
+        let _ = self.cdt.inserter.insert_at(vertex, Location::OnEdge(e));
+        self.after_insertion(vertex);
+    }
+
+    /// Adds vertex `p` with attributes `attribute(attrs, (i, k))`.
+    fn new_vertex(&mut self, p: Point, kind: VertexKind, attribute: impl Fn(&[f64], (usize, usize)) -> f64) -> u32 {
+        let vertex = self.cdt.inserter.mesh.add_point(p);
+        let k = self.attribute_count;
+        for i in 0..k {
+            let value = attribute(self.attributes, (i, k));
+            self.attributes.push(value);
+        }
+        self.kinds.push(kind);
+        self.report.steiner_points += 1;
+        vertex
+    }
+
+    /// Queues what a new vertex may have spoiled: bad triangles around it, encroached segments.
+    fn after_insertion(&mut self, vertex: u32) {
+        let mesh = &self.cdt.inserter.mesh;
+        let start = mesh.vertex_edge[vertex as usize];
+        let mut around = Vec::new();
+        let mut e = start;
+        loop {
+            around.push(e);
+            e = mesh.twin(prev(e));
+            if e == start {
+                break;
+            }
+        }
+        for e in around {
+            let t = triangle_of(e);
+            let opposite = next(e);
+            if self.cdt.inserter.mesh.is_segment(opposite) {
+                self.check_segment(opposite);
+            }
+            if self.cdt.inserter.mesh.is_segment(e) {
+                self.check_segment(e);
+            }
+            if self.inside(t) {
+                self.check_triangle(t);
+            }
+        }
+    }
+
+    /// Queues triangle `t` if it is bad.
+    fn check_triangle(&mut self, t: u32) {
+        let mesh = &self.cdt.inserter.mesh;
+        let [a, b, c] = mesh.triangle(t);
+        let [pa, pb, pc] = [a, b, c].map(|v| mesh.point(v));
+        let area = 0.5 * P::orient2d(pa, pb, pc);
+        let mut badness: Option<f64> = None;
+        // Angle: the smallest angle is opposite the shortest edge (Triangle's test, with cos²).
+        if self.cos2_min_angle <= 1.0 {
+            let sq = |p: Point, q: Point| (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2);
+            let (lab, lbc, lca) = (sq(pa, pb), sq(pb, pc), sq(pc, pa));
+            // Apex of the shortest edge and the squared lengths of its two other edges.
+            let (apex, p, q, l1, l2) = if lab <= lbc && lab <= lca {
+                (c, pa, pb, lca, lbc)
+            } else if lbc <= lca {
+                (a, pb, pc, lab, lca)
+            } else {
+                (b, pc, pa, lbc, lab)
+            };
+            let o = mesh.point(apex);
+            let dot = (p[0] - o[0]) * (q[0] - o[0]) + (p[1] - o[1]) * (q[1] - o[1]);
+            let cos2 = if dot > 0.0 { dot * dot / (l1 * l2) } else { 0.0 };
+            if cos2 > self.cos2_min_angle && !self.is_forced_by_input(apex, p, q) {
+                badness = Some(1.0 + cos2);
+            }
+        }
+        if badness.is_none() {
+            let regional = if self.quality.variable_area {
+                self.domain.max_area.get(mesh.tag[t as usize] as usize).copied().unwrap_or(-1.0)
+            } else {
+                -1.0
+            };
+            let too_big = self.quality.max_area.is_some_and(|m| area > m) || (regional > 0.0 && area > regional);
+            let unsuitable = || {
+                self.quality.user_test.is_some_and(|f| f(pa[0], pa[1], pb[0], pb[1], pc[0], pc[1], area))
+            };
+            if too_big || unsuitable() {
+                badness = Some(area.min(0.5));
+            }
+        }
+        if let Some(badness) = badness {
+            self.bad.push(BadTriangle { badness, corners: [a, b, c] });
+        }
+    }
+
+    /// A skinny triangle whose shortest edge joins two points on two segments meeting at its
+    /// apex, at equal distances from it, is forced by the small input angle: splitting it would
+    /// only cut the angle into more skinny triangles (Shewchuk 2002, §4).
+    fn is_forced_by_input(&self, apex: u32, p: Point, q: Point) -> bool {
+        let o = self.pt(apex);
+        let (dp, dq) = ((p[0] - o[0]).powi(2) + (p[1] - o[1]).powi(2), (q[0] - o[0]).powi(2) + (q[1] - o[1]).powi(2));
+        if dp > 1.002 * dq || dq > 1.002 * dp {
+            return false;
+        }
+        let mesh = &self.cdt.inserter.mesh;
+        // Both other edges at the apex must be segments.
+        let start = mesh.vertex_edge[apex as usize];
+        let mut e = start;
+        let mut hits = 0;
+        loop {
+            let w = mesh.dest(e);
+            if w != GHOST && mesh.is_segment(e) && (mesh.point(w) == p || mesh.point(w) == q) {
+                hits += 1;
+            }
+            e = mesh.twin(prev(e));
+            if e == start {
+                break;
+            }
+        }
+        hits == 2
+    }
+
+    /// The point where a bad triangle is split: its circumcentre, or Üngör's off-centre on the
+    /// bisector of its shortest edge when that is nearer to the edge. Also its affine frame
+    /// coordinates in the triangle, for interpolating attributes.
+    fn split_point(&self, corners: [u32; 3]) -> (Point, f64, f64) {
+        let [a, b, c] = corners.map(|v| self.pt(v));
+        let (centre, xi, eta) = circumcenter(a, b, c);
+        if !self.off_center.is_finite() {
+            return (centre, xi, eta);
+        }
+        let sq = |p: Point, q: Point| (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2);
+        let (p, q) = if sq(a, b) <= sq(b, c) && sq(a, b) <= sq(c, a) {
+            (a, b)
+        } else if sq(b, c) <= sq(c, a) {
+            (b, c)
+        } else {
+            (c, a)
+        };
+        let mid = [0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1])];
+        // The bisector toward the triangle (left of p→q, the counter-clockwise side).
+        let normal = [-(q[1] - p[1]), q[0] - p[0]];
+        let off = [mid[0] + self.off_center * normal[0], mid[1] + self.off_center * normal[1]];
+        if sq(off, mid) < sq(centre, mid) {
+            // Frame coordinates of the off-centre in triangle (a, b, c).
+            let det = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+            let (dx, dy) = (off[0] - a[0], off[1] - a[1]);
+            let xi = (dx * (c[1] - a[1]) - dy * (c[0] - a[0])) / det;
+            let eta = ((b[0] - a[0]) * dy - (b[1] - a[1]) * dx) / det;
+            (off, xi, eta)
+        } else {
+            (centre, xi, eta)
+        }
+    }
+
+    fn split_triangle(&mut self, t: u32, bad: BadTriangle) {
+        let corners = self.cdt.inserter.mesh.triangle(t);
+        let (x, xi, eta) = self.split_point(corners);
+        if !(x[0].is_finite() && x[1].is_finite()) {
+            return;
+        }
+        match self.walk(t, x) {
+            Walk::Lost => {}
+            Walk::Blocked(s) => {
+                let mesh = &self.cdt.inserter.mesh;
+                let (u, v) = (mesh.origin(s), mesh.dest(s));
+                // A segment hides the new point from the triangle: the point may not be
+                // inserted, and the segment is split instead (Ruppert's rule; with lenses the
+                // point need not lie in its diametral circle).
+                if self.may_split(s) && !self.unsplittable.contains(&(u.min(v), u.max(v))) {
+                    self.encroached.push_back((u, v, true));
+                    self.bad.push(bad);
+                }
+            }
+            Walk::Found(location) => {
+                if let Location::OnVertex(_) = location {
+                    return; // precision exhausted here
+                }
+                let encroached = self.encroached_by(x, location);
+                if !encroached.is_empty() {
+                    let mut queued = false;
+                    for (u, v, e) in encroached {
+                        if self.may_split(e) && !self.unsplittable.contains(&(u.min(v), u.max(v))) {
+                            self.encroached.push_back((u, v, true));
+                            queued = true;
+                        }
+                    }
+                    if queued {
+                        // Reconsidered once the subsegments are split.
+                        self.bad.push(bad);
+                    }
+                    return;
+                }
+                if self.too_close(x, location) {
+                    self.skipped += 1;
+                    return;
+                }
+                let [a, b, c] = corners;
+                let vertex = self.new_vertex(x, VertexKind::Free, |attrs, (i, k)| {
+                    let (va, vb, vc) = (attrs[a as usize * k + i], attrs[b as usize * k + i], attrs[c as usize * k + i]);
+                    va + xi * (vb - va) + eta * (vc - va)
+                });
+                let _ = self.cdt.inserter.insert_at(vertex, location);
+                self.after_insertion(vertex);
+            }
+        }
+    }
+
+    /// Whether `x`, at `location`, would make an edge shorter than the floor.
+    fn too_close(&self, x: Point, location: Location) -> bool {
+        let mesh = &self.cdt.inserter.mesh;
+        let triangles = match location {
+            Location::InTriangle(t) | Location::Outside(t) => [t, t],
+            Location::OnEdge(e) => [triangle_of(e), triangle_of(mesh.twin(e))],
+            Location::OnVertex(_) => return true,
+        };
+        triangles.iter().flat_map(|&t| mesh.triangle(t)).filter(|&v| v != GHOST).any(|v| {
+            let p = mesh.point(v);
+            (p[0] - x[0]).powi(2) + (p[1] - x[1]).powi(2) < self.floor2
+        })
+    }
+
+    /// Walks in a straight line from the centroid of triangle `t` to `x`, staying in the domain.
+    fn walk(&self, t: u32, x: Point) -> Walk {
+        let mesh = &self.cdt.inserter.mesh;
+        let [a, b, c] = mesh.triangle(t).map(|v| mesh.point(v));
+        let g = [(a[0] + b[0] + c[0]) / 3.0, (a[1] + b[1] + c[1]) / 3.0];
+        let mut t = t;
+        let mut entry = NONE;
+        for _ in 0..mesh.triangle_count() + 3 {
+            // The edge through which the ray g→x leaves t (u right of the ray, v left of it).
+            let mut exit = NONE;
+            for e in 3 * t..3 * t + 3 {
+                if e == entry {
+                    continue;
+                }
+                let (u, v) = (mesh.point(mesh.origin(e)), mesh.point(mesh.dest(e)));
+                if P::orient2d(g, x, u) <= 0.0 && P::orient2d(g, x, v) > 0.0 {
+                    exit = e;
+                    break;
+                }
+            }
+            if exit == NONE {
+                return Walk::Lost;
+            }
+            let (u, v) = (mesh.point(mesh.origin(exit)), mesh.point(mesh.dest(exit)));
+            let side = P::orient2d(u, v, x);
+            if side > 0.0 {
+                return Walk::Found(Location::InTriangle(t));
+            }
+            if side == 0.0 {
+                // On the exit edge (or its line beyond the triangle, which the ray rules out).
+                if mesh.is_segment(exit) {
+                    return Walk::Blocked(exit);
+                }
+                for w in [mesh.origin(exit), mesh.dest(exit)] {
+                    if mesh.point(w) == x {
+                        return Walk::Found(Location::OnVertex(w));
+                    }
+                }
+                return Walk::Found(Location::OnEdge(exit));
+            }
+            if mesh.is_segment(exit) {
+                return Walk::Blocked(exit);
+            }
+            let f = mesh.twin(exit);
+            let next_t = triangle_of(f);
+            if !self.inside(next_t) || mesh.is_ghost(next_t) {
+                return Walk::Lost;
+            }
+            t = next_t;
+            entry = f;
+        }
+        Walk::Lost
+    }
+
+    /// The subsegments that `x` would encroach if inserted at `location`: those bounding the
+    /// triangles whose circumcircles contain `x` (the Bowyer–Watson cavity, which does not cross
+    /// segments), with `x` inside their diametral circles.
+    fn encroached_by(&self, x: Point, location: Location) -> Vec<(u32, u32, u32)> {
+        let mesh = &self.cdt.inserter.mesh;
+        let mut stack: Vec<u32> = match location {
+            Location::InTriangle(t) | Location::Outside(t) => vec![t],
+            Location::OnEdge(e) => vec![triangle_of(e), triangle_of(mesh.twin(e))],
+            Location::OnVertex(_) => vec![],
+        };
+        let mut seen: Vec<u32> = stack.clone();
+        let mut found = Vec::new();
+        while let Some(t) = stack.pop() {
+            for e in 3 * t..3 * t + 3 {
+                if mesh.is_segment(e) {
+                    let (u, v) = (mesh.origin(e), mesh.dest(e));
+                    if self.encroaches(u, v, x) && !found.iter().any(|&(a, b, _)| (a, b) == (u, v) || (a, b) == (v, u)) {
+                        found.push((u, v, e));
+                    }
+                    continue;
+                }
+                let n = triangle_of(mesh.twin(e));
+                if seen.contains(&n) || !self.inside(n) || mesh.is_ghost(n) {
+                    continue;
+                }
+                let [a, b, c] = mesh.triangle(n).map(|v| mesh.point(v));
+                if P::incircle(a, b, c, x) > 0.0 {
+                    seen.push(n);
+                    stack.push(n);
+                }
+            }
+        }
+        found
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::data::{Hooks, Input, Output};
+    use crate::options::{Options, SwitchSource};
+    use crate::pipeline::triangulate;
+
+    fn mesh(switches: &str, points: &[f64], segments: &[i32]) -> Output {
+        let options = Options::parse(switches, SwitchSource::Library).unwrap();
+        let input = Input { points, segments, ..Input::default() };
+        triangulate(&options, &input, &Hooks::default()).unwrap().0
+    }
+
+    fn smallest_angle(out: &Output) -> f64 {
+        let p = out.points.as_ref().unwrap();
+        let pt = |v: i32| [p[2 * v as usize], p[2 * v as usize + 1]];
+        let mut smallest = 180.0f64;
+        for t in out.triangles.as_ref().unwrap().chunks(3) {
+            for i in 0..3 {
+                let (a, b, c) = (pt(t[i]), pt(t[(i + 1) % 3]), pt(t[(i + 2) % 3]));
+                let (u, v) = ([b[0] - a[0], b[1] - a[1]], [c[0] - a[0], c[1] - a[1]]);
+                let angle = (u[0] * v[1] - u[1] * v[0]).abs().atan2(u[0] * v[0] + u[1] * v[1]).to_degrees();
+                smallest = smallest.min(angle);
+            }
+        }
+        smallest
+    }
+
+    const SQUARE: [f64; 8] = [0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0];
+    const SQUARE_SEGMENTS: [i32; 8] = [0, 1, 1, 2, 2, 3, 3, 0];
+    /// An outline with a notch and a crossbar meeting a slanted stroke.
+    const SHAPE: [f64; 18] = [0.0, 0.0, 1.0, 0.0, 1.2, 2.0, 1.4, 0.0, 2.4, 0.0, 1.6, 3.0, 0.8, 3.0, 1.1, 1.0, 1.3, 1.0];
+    const SHAPE_SEGMENTS: [i32; 18] = [0, 1, 1, 7, 7, 8, 8, 2, 2, 3, 3, 4, 4, 5, 5, 6, 6, 0];
+
+    #[test]
+    fn area_bound_holds() {
+        let out = mesh("pza0.01Q", &SQUARE, &SQUARE_SEGMENTS);
+        assert!(out.triangle_count >= 100, "{}", out.triangle_count);
+    }
+
+    #[test]
+    fn angle_bound_holds_up_to_the_guaranteed_angle_and_beyond() {
+        for angle in [20.0, 25.0, 28.6, 30.0, 33.0] {
+            let out = mesh(&format!("pzq{angle}Q"), &SHAPE, &SHAPE_SEGMENTS);
+            assert!(smallest_angle(&out) >= angle - 1e-9, "q{angle}: {}", smallest_angle(&out));
+            assert!(out.warnings.is_empty(), "{:?}", out.warnings);
+        }
+    }
+
+    #[test]
+    fn too_large_an_angle_stops_with_a_warning() {
+        let out = mesh("pzq45Q", &SHAPE, &SHAPE_SEGMENTS);
+        assert!(out.triangle_count > 20 && out.triangle_count < 10_000, "{}", out.triangle_count);
+        assert!(out.warnings.iter().any(|w| w.contains("guaranteed to terminate")), "{:?}", out.warnings);
+    }
+}

@@ -1,0 +1,725 @@
+//! Checks of constrained Delaunay triangulations of PSLGs (the `p` switch), on one output or
+//! between ours and Triangle's:
+//! - [`MeshView::of`]: a valid mesh of a domain (corners in range, counter-clockwise by exact
+//!   `orient2d`, manifold, no two used vertices at one place, every boundary edge a segment);
+//! - [`check_constrained_delaunay`]: every interior edge that is not a segment is locally
+//!   Delaunay by exact `incircle`;
+//! - [`segment_chains`]: every input segment is a chain of output segments, split at the vertices
+//!   on it and where other segments cross it;
+//! - [`check_markers`]: Triangle's marker rules for vertices, segments and edges;
+//! - [`pslg_differences`]: ours against Triangle's, vertices matched by coordinates (new vertices
+//!   at crossings with a small tolerance), triangles compared where the CDT is unique.
+
+use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
+
+use super::call::{MeshInput, Triangulation};
+use super::checks::{canonical_triangle, directed_edges, incircle, orient2d, zero_based, Directed};
+use super::points::Point;
+
+fn bits(p: Point) -> [u64; 2] {
+    p.map(f64::to_bits)
+}
+
+fn sorted_pair(a: usize, b: usize) -> [usize; 2] {
+    [a.min(b), a.max(b)]
+}
+
+/// A zero-based view of one output, checked for validity on construction.
+pub struct MeshView<'a> {
+    pub out: &'a Triangulation,
+    pub points: &'a [Point],
+    pub triangles: Vec<[usize; 3]>,
+    /// Output segments (zero-based, as written).
+    pub segments: Vec<[usize; 2]>,
+    /// Sorted output segment → its index in `segments`.
+    pub segment_index: HashMap<[usize; 2], usize>,
+    /// Directed edge → (triangle, corner opposite it).
+    pub edges: Directed,
+    /// Per output vertex: a corner of an output triangle.
+    pub in_mesh: Vec<bool>,
+    /// Per output vertex: an endpoint of a boundary edge of the mesh.
+    pub on_boundary: Vec<bool>,
+}
+
+impl<'a> MeshView<'a> {
+    /// Checks that `out` is a valid mesh of a domain bounded by its segments.
+    pub fn of(out: &'a Triangulation) -> Result<MeshView<'a>, String> {
+        let points = out.points.as_deref().ok_or("no output points")?;
+        let triangles = zero_based(out);
+        let base = out.base as usize;
+        let segments: Vec<[usize; 2]> = out
+            .segments
+            .as_deref()
+            .unwrap_or_default()
+            .iter()
+            .map(|s| s.map(|v| (v as usize).wrapping_sub(base)))
+            .collect();
+        for (t, c) in triangles.iter().enumerate() {
+            if c.iter().any(|&v| v >= points.len()) {
+                return Err(format!("triangle {t} {c:?} has a corner out of range"));
+            }
+            if orient2d(points[c[0]], points[c[1]], points[c[2]]) <= 0.0 {
+                return Err(format!(
+                    "triangle {t} {c:?} is not counter-clockwise: {:?}",
+                    c.map(|v| points[v])
+                ));
+            }
+        }
+        let mut segment_index = HashMap::new();
+        for (i, s) in segments.iter().enumerate() {
+            if s.iter().any(|&v| v >= points.len()) || s[0] == s[1] {
+                return Err(format!(
+                    "output segment {i} {s:?} is degenerate or out of range"
+                ));
+            }
+            if segment_index.insert(sorted_pair(s[0], s[1]), i).is_some() {
+                return Err(format!("output segment {s:?} appears twice"));
+            }
+        }
+        let edges = directed_edges(&triangles)?;
+        let mut in_mesh = vec![false; points.len()];
+        let mut at: HashMap<[u64; 2], usize> = HashMap::new();
+        for &v in triangles.iter().flatten() {
+            in_mesh[v] = true;
+            if let Some(&other) = at.get(&bits(points[v])) {
+                if other != v {
+                    return Err(format!(
+                        "vertices {other} and {v} coincide at {:?} and are both in the mesh",
+                        points[v]
+                    ));
+                }
+            }
+            at.insert(bits(points[v]), v);
+        }
+        let mut on_boundary = vec![false; points.len()];
+        for &(a, b) in edges.keys() {
+            if !edges.contains_key(&(b, a)) {
+                on_boundary[a] = true;
+                on_boundary[b] = true;
+                if out.segments.is_some() && !segment_index.contains_key(&sorted_pair(a, b)) {
+                    return Err(format!(
+                        "boundary edge {a}-{b} {:?} is not a segment",
+                        [points[a], points[b]]
+                    ));
+                }
+            }
+        }
+        for (i, s) in segments.iter().enumerate() {
+            if !edges.contains_key(&(s[0], s[1])) && !edges.contains_key(&(s[1], s[0])) {
+                return Err(format!(
+                    "output segment {i} {s:?} is not an edge of an output triangle"
+                ));
+            }
+        }
+        Ok(MeshView {
+            out,
+            points,
+            triangles,
+            segments,
+            segment_index,
+            edges,
+            in_mesh,
+            on_boundary,
+        })
+    }
+
+    pub fn is_segment(&self, a: usize, b: usize) -> bool {
+        self.segment_index.contains_key(&sorted_pair(a, b))
+    }
+
+    pub fn is_boundary_edge(&self, a: usize, b: usize) -> bool {
+        self.edges.contains_key(&(a, b)) != self.edges.contains_key(&(b, a))
+    }
+
+    /// The total area of the triangles.
+    pub fn area(&self) -> f64 {
+        let Some(&o) = self.points.first() else {
+            return 0.0;
+        };
+        let rel = |p: Point| [p[0] - o[0], p[1] - o[1]];
+        self.triangles
+            .iter()
+            .map(|c| {
+                let [a, b, d] = c.map(|v| rel(self.points[v]));
+                0.5 * ((b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]))
+            })
+            .sum()
+    }
+
+    /// Interior non-segment edges whose two triangles' corners are exactly cocircular: there the
+    /// constrained Delaunay triangulation is not unique (sorted pairs).
+    pub fn cocircular_edges(&self) -> HashSet<[usize; 2]> {
+        let mut found = HashSet::new();
+        for (&(a, b), &(t, k)) in &self.edges {
+            let Some(&(u, l)) = self.edges.get(&(b, a)) else {
+                continue;
+            };
+            if a < b && !self.is_segment(a, b) {
+                let (apex, opposite) = (self.triangles[t][k], self.triangles[u][l]);
+                if incircle(
+                    self.points[a],
+                    self.points[b],
+                    self.points[apex],
+                    self.points[opposite],
+                ) == 0.0
+                {
+                    found.insert([a, b]);
+                }
+            }
+        }
+        found
+    }
+
+    /// Whether triangle `t` has a cocircular edge (it lies in a region where the CDT is not
+    /// unique).
+    pub fn is_ambiguous(&self, t: usize, cocircular: &HashSet<[usize; 2]>) -> bool {
+        let c = self.triangles[t];
+        (0..3).any(|k| cocircular.contains(&sorted_pair(c[k], c[(k + 1) % 3])))
+    }
+
+    /// The output vertex at `p` that is in the mesh (or any output vertex there).
+    pub fn vertex_at(&self, p: Point) -> Option<usize> {
+        let mut found = None;
+        for (v, &q) in self.points.iter().enumerate() {
+            if bits(q) == bits(p) {
+                if self.in_mesh[v] {
+                    return Some(v);
+                }
+                found = found.or(Some(v));
+            }
+        }
+        found
+    }
+}
+
+/// Every interior edge that is not a segment is locally Delaunay: the opposite vertex is not
+/// strictly inside the circumcircle (exact `incircle`).
+pub fn check_constrained_delaunay(mesh: &MeshView<'_>) -> Result<(), String> {
+    for (&(a, b), &(t, k)) in &mesh.edges {
+        let Some(&(u, l)) = mesh.edges.get(&(b, a)) else {
+            continue;
+        };
+        if a > b || mesh.is_segment(a, b) {
+            continue;
+        }
+        let (apex, opposite) = (mesh.triangles[t][k], mesh.triangles[u][l]);
+        if incircle(
+            mesh.points[a],
+            mesh.points[b],
+            mesh.points[apex],
+            mesh.points[opposite],
+        ) > 0.0
+        {
+            return Err(format!(
+                "edge {a}-{b} is not a segment and not locally Delaunay: vertex {opposite} lies inside the circumcircle of {:?}",
+                mesh.triangles[t]
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The input segments that Triangle inserts (zero-based, endpoints in range and distinct
+/// coordinates), with their index in the input.
+pub fn effective_segments(input: &MeshInput) -> Vec<(usize, [usize; 2])> {
+    let n = input.points.len();
+    input
+        .segments
+        .iter()
+        .enumerate()
+        .filter_map(|(i, s)| {
+            let [a, b] = s.map(|v| v as usize);
+            (a < n && b < n && bits(input.points[a]) != bits(input.points[b]))
+                .then_some((i, [a, b]))
+        })
+        .collect()
+}
+
+/// Relative tolerance for vertices created at crossings: they lie on the crossed segment only
+/// up to rounding.
+const NEW_VERTEX_TOLERANCE: f64 = 1e-9;
+
+/// For each input segment (of a zero-based `input`) that is inserted, the chain of output
+/// vertices along it, from its first to its second endpoint: consecutive chain vertices are
+/// output segments, input vertices on the chain lie exactly on the segment, new vertices (not at
+/// any input vertex's place) within a small tolerance of it. Checks as well that every input
+/// vertex lying on a segment is on its chain, that segments that cross share a chain vertex, and
+/// that every output segment lies on a chain (or, with `hull_segments`, on the mesh boundary).
+pub fn segment_chains(
+    input: &MeshInput,
+    mesh: &MeshView<'_>,
+    hull_segments: bool,
+) -> Result<BTreeMap<usize, Vec<usize>>, String> {
+    let input_places: HashSet<[u64; 2]> = input.points.iter().map(|&p| bits(p)).collect();
+    let mut adjacent: HashMap<usize, Vec<usize>> = HashMap::new();
+    for s in &mesh.segments {
+        adjacent.entry(s[0]).or_default().push(s[1]);
+        adjacent.entry(s[1]).or_default().push(s[0]);
+    }
+    let segments = effective_segments(input);
+    let mut chains = BTreeMap::new();
+    for &(i, [a, b]) in &segments {
+        let (pa, pb) = (input.points[a], input.points[b]);
+        let d = [pb[0] - pa[0], pb[1] - pa[1]];
+        let length2 = d[0] * d[0] + d[1] * d[1];
+        let param = |p: Point| ((p[0] - pa[0]) * d[0] + (p[1] - pa[1]) * d[1]) / length2;
+        let on_line = |p: Point| {
+            if input_places.contains(&bits(p)) {
+                orient2d(pa, pb, p) == 0.0
+            } else {
+                let cross = (p[0] - pa[0]) * d[1] - (p[1] - pa[1]) * d[0];
+                cross.abs() <= NEW_VERTEX_TOLERANCE * length2
+            }
+        };
+        let what = |detail: String| {
+            format!(
+                "input segment {i} {:?} ({pa:?} to {pb:?}): {detail}",
+                input.segments[i]
+            )
+        };
+        let start = mesh
+            .vertex_at(pa)
+            .ok_or_else(|| what("its first endpoint is not an output vertex".into()))?;
+        let end = mesh
+            .vertex_at(pb)
+            .ok_or_else(|| what("its second endpoint is not an output vertex".into()))?;
+        let mut chain = vec![start];
+        let mut current = start;
+        while current != end {
+            let t = param(mesh.points[current]);
+            let next = adjacent
+                .get(&current)
+                .into_iter()
+                .flatten()
+                .copied()
+                .filter(|&w| param(mesh.points[w]) > t && on_line(mesh.points[w]))
+                .min_by(|&x, &y| param(mesh.points[x]).total_cmp(&param(mesh.points[y])))
+                .ok_or_else(|| {
+                    what(format!(
+                        "no output segment continues its chain {chain:?} at {:?}",
+                        mesh.points[current]
+                    ))
+                })?;
+            if param(mesh.points[next]) > 1.0 {
+                return Err(what(format!("its chain {chain:?} overshoots the endpoint")));
+            }
+            chain.push(next);
+            current = next;
+        }
+        // Input vertices lying on the segment split it, unless the chain bends around them at
+        // a new vertex (a rounded crossing: Triangle inserts the rest of the segment from there,
+        // and so do we).
+        for (v, &p) in input.points.iter().enumerate() {
+            let t = param(p);
+            if t > 0.0 && t < 1.0 && orient2d(pa, pb, p) == 0.0 {
+                let w = mesh.vertex_at(p).ok_or_else(|| {
+                    what(format!("input vertex {v} on it is not an output vertex"))
+                })?;
+                let piece = chain
+                    .windows(2)
+                    .find(|piece| param(mesh.points[piece[1]]) >= t)
+                    .expect("the chain ends at t = 1");
+                let bent = piece
+                    .iter()
+                    .any(|&u| !input_places.contains(&bits(mesh.points[u])));
+                if !chain.contains(&w) && !bent {
+                    return Err(what(format!(
+                        "input vertex {v} {p:?} lies on it but its chain {chain:?} misses it"
+                    )));
+                }
+            }
+        }
+        chains.insert(i, chain);
+    }
+    // Segments that cross share a chain vertex.
+    for (x, &(i, [a, b])) in segments.iter().enumerate() {
+        for &(j, [c, d]) in &segments[x + 1..] {
+            let p = |v: usize| input.points[v];
+            let crosses = orient2d(p(a), p(b), p(c)) * orient2d(p(a), p(b), p(d)) < 0.0
+                && orient2d(p(c), p(d), p(a)) * orient2d(p(c), p(d), p(b)) < 0.0;
+            if crosses && !chains[&i].iter().any(|v| chains[&j].contains(v)) {
+                return Err(format!("input segments {i} and {j} cross, but their chains {:?} and {:?} share no vertex", chains[&i], chains[&j]));
+            }
+        }
+    }
+    let covered: HashSet<[usize; 2]> = chains
+        .values()
+        .flat_map(|c| c.windows(2).map(|w| sorted_pair(w[0], w[1])))
+        .collect();
+    for s in &mesh.segments {
+        let on_hull = hull_segments && mesh.is_boundary_edge(s[0], s[1]);
+        if !covered.contains(&sorted_pair(s[0], s[1])) && !on_hull {
+            return Err(format!("output segment {s:?} lies on no input segment"));
+        }
+    }
+    Ok(chains)
+}
+
+/// Triangle's marker rules, on an output with markers:
+/// - a vertex in the mesh: its input marker if non-zero; else the marker of the first segment
+///   (in input order) with a non-zero marker whose chain passes through it; else 1 on the mesh
+///   boundary; else 0 (vertices left outside the mesh are not checked: their markers depend on
+///   the order in which Triangle eats triangles);
+/// - a segment: the first non-zero marker of the input segments whose chains contain it; else 1
+///   on the boundary; else 0;
+/// - an edge (`e`): the same for segments, else 1 on the boundary, else 0.
+///
+/// `input_vertex` maps an output vertex to the input vertex it is (`None` for new vertices).
+pub fn check_markers(
+    input: &MeshInput,
+    mesh: &MeshView<'_>,
+    chains: &BTreeMap<usize, Vec<usize>>,
+    input_vertex: &dyn Fn(usize) -> Option<usize>,
+) -> Result<(), String> {
+    let out = mesh.out;
+    let segment_marker = |i: usize| input.segment_markers.as_ref().map_or(0, |m| m[i]);
+    let mut vertex_rule: HashMap<usize, i32> = HashMap::new();
+    let mut piece_rule: HashMap<[usize; 2], i32> = HashMap::new();
+    for (&i, chain) in chains {
+        let marker = segment_marker(i);
+        if marker == 0 {
+            continue;
+        }
+        for &v in chain {
+            vertex_rule.entry(v).or_insert(marker);
+        }
+        for w in chain.windows(2) {
+            piece_rule.entry(sorted_pair(w[0], w[1])).or_insert(marker);
+        }
+    }
+    let edge_rule = |a: usize, b: usize| {
+        piece_rule
+            .get(&sorted_pair(a, b))
+            .copied()
+            .unwrap_or(i32::from(mesh.is_boundary_edge(a, b)))
+    };
+    let markers = out.point_markers.as_deref().ok_or("no point markers")?;
+    for v in (0..mesh.points.len()).filter(|&v| mesh.in_mesh[v]) {
+        let given = input_vertex(v)
+            .and_then(|i| input.markers.as_ref().map(|m| m[i]))
+            .unwrap_or(0);
+        let expected = if given != 0 {
+            given
+        } else {
+            vertex_rule
+                .get(&v)
+                .copied()
+                .unwrap_or(i32::from(mesh.on_boundary[v]))
+        };
+        if markers[v] != expected {
+            return Err(format!(
+                "vertex {v} {:?} (input marker {given}, {}on the boundary, on segments with markers {:?}): marker {}, expected {expected}",
+                mesh.points[v],
+                if mesh.on_boundary[v] { "" } else { "not " },
+                chains.iter().filter(|(_, c)| c.contains(&v)).map(|(&i, _)| segment_marker(i)).collect::<Vec<_>>(),
+                markers[v]
+            ));
+        }
+    }
+    if let Some(segment_markers) = &out.segment_markers {
+        for (s, &marker) in mesh.segments.iter().zip(segment_markers) {
+            let expected = edge_rule(s[0], s[1]);
+            if marker != expected {
+                return Err(format!(
+                    "output segment {s:?}: marker {marker}, expected {expected}"
+                ));
+            }
+        }
+    }
+    if let (Some(edges), Some(edge_markers)) = (&out.edges, &out.edge_markers) {
+        for (e, &marker) in edges.iter().zip(edge_markers) {
+            let [a, b] = e.map(|v| (v - out.base) as usize);
+            let expected = edge_rule(a, b);
+            if marker != expected {
+                return Err(format!(
+                    "edge {a}-{b}: marker {marker}, expected {expected}"
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Where the two outputs' vertices are matched: exactly by coordinates, or (vertices created at
+/// crossings) within a small tolerance relative to the input's extent.
+pub const SNAP_TOLERANCE: f64 = 1e-9;
+
+/// Every difference between our output and Triangle's for the same PSLG and switches:
+/// counts, which arrays are written, vertices (matched by coordinates, snapped), vertex markers
+/// (of vertices in the mesh) and attributes, triangles (where the CDT is unique; elsewhere the
+/// ambiguous regions must have the same vertices and triangle counts), region attributes per
+/// triangle, segments and edges with their markers, and neighbours (each consistent with its own
+/// triangles).
+pub fn pslg_differences(
+    input: &MeshInput,
+    ours: &Triangulation,
+    theirs: &Triangulation,
+) -> Vec<String> {
+    let input_places: HashSet<[u64; 2]> = input.points.iter().map(|&p| bits(p)).collect();
+    let mut diffs = Vec::new();
+    if ours.counts != theirs.counts {
+        diffs.push(format!(
+            "counts: ours {:?}, Triangle's {:?}",
+            ours.counts, theirs.counts
+        ));
+    }
+    let written = |t: &Triangulation| {
+        [
+            t.points.is_some(),
+            t.point_attributes.is_some(),
+            t.point_markers.is_some(),
+            t.triangles.is_some(),
+            t.triangle_attributes.is_some(),
+            t.neighbors.is_some(),
+            t.segments.is_some(),
+            t.segment_markers.is_some(),
+            t.edges.is_some(),
+            t.edge_markers.is_some(),
+            t.holes_alias_input,
+            t.regions_alias_input,
+            t.triangle_areas_written,
+            t.norms_written,
+        ]
+    };
+    if written(ours) != written(theirs) {
+        diffs.push(format!(
+            "arrays written (points, attributes, markers, triangles, attributes, neighbours, segments, markers, edges, markers, holes, regions, areas, norms): ours {:?}, Triangle's {:?}",
+            written(ours),
+            written(theirs)
+        ));
+    }
+    let (a, b) = match (MeshView::of(ours), MeshView::of(theirs)) {
+        (Ok(a), Ok(b)) => (a, b),
+        (a, b) => {
+            diffs.push(format!(
+                "invalid mesh: ours {:?}, Triangle's {:?}",
+                a.err(),
+                b.err()
+            ));
+            return diffs;
+        }
+    };
+    for (who, view) in [("ours", &a), ("Triangle's", &b)] {
+        if let Some(neighbors) = &view.out.neighbors {
+            if let Err(e) =
+                super::checks::check_neighbors(&view.triangles, neighbors, view.out.base)
+            {
+                diffs.push(format!("{who} neighbours: {e}"));
+            }
+        }
+    }
+
+    // Vertices: ours → Triangle's.
+    let extent = b
+        .points
+        .iter()
+        .flat_map(|p| p.iter())
+        .fold(0.0f64, |m, x| m.max(x.abs()))
+        .max(f64::MIN_POSITIVE);
+    let mut theirs_at: HashMap<[u64; 2], Vec<usize>> = HashMap::new();
+    for (v, &p) in b.points.iter().enumerate() {
+        theirs_at.entry(bits(p)).or_default().push(v);
+    }
+    let mut taken = vec![false; b.points.len()];
+    let mut map = vec![usize::MAX; a.points.len()];
+    let mut snapped = vec![false; a.points.len()];
+    for (v, &p) in a.points.iter().enumerate() {
+        if let Some(&w) = theirs_at
+            .get(&bits(p))
+            .into_iter()
+            .flatten()
+            .find(|&&w| !taken[w])
+        {
+            map[v] = w;
+            taken[w] = true;
+        }
+    }
+    for (v, &p) in a.points.iter().enumerate() {
+        if map[v] != usize::MAX {
+            continue;
+        }
+        let distance = |w: usize| {
+            (b.points[w][0] - p[0])
+                .abs()
+                .max((b.points[w][1] - p[1]).abs())
+        };
+        let nearest = (0..b.points.len())
+            .filter(|&w| !taken[w])
+            .min_by(|&x, &y| distance(x).total_cmp(&distance(y)));
+        match nearest {
+            Some(w) if distance(w) <= SNAP_TOLERANCE * extent => {
+                map[v] = w;
+                taken[w] = true;
+                snapped[v] = true;
+            }
+            _ => diffs.push(format!(
+                "our vertex {v} {p:?} is not among Triangle's vertices"
+            )),
+        }
+    }
+    if !diffs.is_empty() {
+        return diffs;
+    }
+    for (v, &w) in map.iter().enumerate() {
+        if a.in_mesh[v] != b.in_mesh[w] {
+            diffs.push(format!(
+                "vertex {:?}: in our mesh {}, in Triangle's {}",
+                a.points[v], a.in_mesh[v], b.in_mesh[w]
+            ));
+        }
+    }
+    if let (Some(ma), Some(mb)) = (&ours.point_markers, &theirs.point_markers) {
+        for v in (0..a.points.len()).filter(|&v| a.in_mesh[v]) {
+            if ma[v] != mb[map[v]] {
+                diffs.push(format!(
+                    "marker of vertex {v} {:?} (in the mesh): ours {}, Triangle's {}",
+                    a.points[v], ma[v], mb[map[v]]
+                ));
+            }
+        }
+    }
+    if let (Some(xa), Some(xb)) = (&ours.point_attributes, &theirs.point_attributes) {
+        let k = ours.counts.point_attributes.max(0) as usize;
+        for v in 0..a.points.len() {
+            let (x, y) = (&xa[v * k..v * k + k], &xb[map[v] * k..map[v] * k + k]);
+            // Input vertices keep their attributes; new ones are interpolated, maybe differently.
+            let same = if input_places.contains(&bits(a.points[v])) {
+                x == y
+            } else {
+                x.iter()
+                    .zip(y)
+                    .all(|(p, q)| (p - q).abs() <= 1e-9 * p.abs().max(q.abs()).max(1.0))
+            };
+            if !same {
+                diffs.push(format!(
+                    "attributes of vertex {v} {:?}: ours {x:?}, Triangle's {y:?}",
+                    a.points[v]
+                ));
+            }
+        }
+    }
+
+    // Triangles, where unique; region attributes per triangle.
+    let (cocircular_a, cocircular_b) = (a.cocircular_edges(), b.cocircular_edges());
+    let attribute_count = ours.counts.triangle_attributes.max(0) as usize;
+    let attributes = |t: &Triangulation, i: usize| -> Vec<u64> {
+        t.triangle_attributes.as_deref().map_or(Vec::new(), |x| {
+            x[i * attribute_count..(i + 1) * attribute_count]
+                .iter()
+                .map(|v| v.to_bits())
+                .collect()
+        })
+    };
+    let mut unique_a = BTreeMap::new();
+    let mut ambiguous_a = (0usize, BTreeSet::new(), Vec::new());
+    for (i, c) in a.triangles.iter().enumerate() {
+        let key = canonical_triangle(c.map(|v| map[v]));
+        if a.is_ambiguous(i, &cocircular_a) {
+            ambiguous_a.0 += 1;
+            ambiguous_a.1.extend(key);
+            ambiguous_a.2.push(attributes(ours, i));
+        } else {
+            unique_a.insert(key, attributes(ours, i));
+        }
+    }
+    let mut unique_b = BTreeMap::new();
+    let mut ambiguous_b = (0usize, BTreeSet::new(), Vec::new());
+    for (i, c) in b.triangles.iter().enumerate() {
+        let key = canonical_triangle(*c);
+        if b.is_ambiguous(i, &cocircular_b) {
+            ambiguous_b.0 += 1;
+            ambiguous_b.1.extend(key);
+            ambiguous_b.2.push(attributes(theirs, i));
+        } else {
+            unique_b.insert(key, attributes(theirs, i));
+        }
+    }
+    ambiguous_a.2.sort();
+    ambiguous_b.2.sort();
+    if unique_a != unique_b {
+        let only_a: Vec<_> = unique_a
+            .iter()
+            .filter(|&(k, v)| unique_b.get(k) != Some(v))
+            .take(5)
+            .collect();
+        let only_b: Vec<_> = unique_b
+            .iter()
+            .filter(|&(k, v)| unique_a.get(k) != Some(v))
+            .take(5)
+            .collect();
+        diffs.push(format!(
+            "triangles where the CDT is unique (with attributes): {} vs {}; ours only (first 5, Triangle's numbering): {only_a:?}; Triangle's only: {only_b:?}",
+            unique_a.len(),
+            unique_b.len()
+        ));
+    }
+    if ambiguous_a != ambiguous_b {
+        diffs.push(format!(
+            "cocircular regions: ours {} triangles on {} vertices, Triangle's {} on {} (or their attributes differ)",
+            ambiguous_a.0,
+            ambiguous_a.1.len(),
+            ambiguous_b.0,
+            ambiguous_b.1.len()
+        ));
+    }
+
+    // Segments and edges with markers (edges inside cocircular regions aside).
+    let pairs = |view: &MeshView<'_>,
+                 list: Option<&[[i32; 2]]>,
+                 markers: Option<&[i32]>,
+                 to_theirs: &dyn Fn(usize) -> usize,
+                 cocircular: &HashSet<[usize; 2]>| {
+        list.unwrap_or_default()
+            .iter()
+            .enumerate()
+            .filter_map(|(i, s)| {
+                let [x, y] = s.map(|v| (v - view.out.base) as usize);
+                (!cocircular.contains(&sorted_pair(x, y))).then(|| {
+                    (
+                        sorted_pair(to_theirs(x), to_theirs(y)),
+                        markers.map(|m| m[i]),
+                    )
+                })
+            })
+            .collect::<BTreeMap<_, _>>()
+    };
+    let ours_to_theirs = |v: usize| map[v];
+    let identity = |v: usize| v;
+    for (what, la, ma, lb, mb) in [
+        (
+            "segments",
+            ours.segments.as_deref(),
+            ours.segment_markers.as_deref(),
+            theirs.segments.as_deref(),
+            theirs.segment_markers.as_deref(),
+        ),
+        (
+            "edges",
+            ours.edges.as_deref(),
+            ours.edge_markers.as_deref(),
+            theirs.edges.as_deref(),
+            theirs.edge_markers.as_deref(),
+        ),
+    ] {
+        let sa = pairs(&a, la, ma, &ours_to_theirs, &cocircular_a);
+        let sb = pairs(&b, lb, mb, &identity, &cocircular_b);
+        if sa != sb {
+            let only_a: Vec<_> = sa
+                .iter()
+                .filter(|&(k, v)| sb.get(k) != Some(v))
+                .take(5)
+                .collect();
+            let only_b: Vec<_> = sb
+                .iter()
+                .filter(|&(k, v)| sa.get(k) != Some(v))
+                .take(5)
+                .collect();
+            diffs.push(format!(
+                "{what} with markers (Triangle's numbering, zero-based): {} vs {}; ours only (first 5): {only_a:?}; Triangle's only: {only_b:?}",
+                sa.len(),
+                sb.len()
+            ));
+        }
+    }
+    diffs
+}

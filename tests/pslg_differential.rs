@@ -1,0 +1,229 @@
+//! Differential tests of the constrained Delaunay triangulation (`p`) against Debian's Triangle
+//! 1.6 (`/usr/lib/libtriangle-1.6.so`), on the classic shapes of tests/data/shapes/ and on random
+//! PSLGs, with `p`, `pc`, `pA`, `pj`, `pe`, `pn`, `pO`, `pz` and combinations: the same counts,
+//! the same arrays written, the same vertices (new vertices at crossings matched with a small
+//! tolerance), the same triangles where the CDT is unique (exact cocircularity detected with
+//! `incircle`), the same segments and edges with markers, the same markers on the vertices of
+//! the mesh, the same region attribute per triangle.
+//!
+//! Duplicate vertices referenced by segments are not compared: Triangle has undefined behaviour
+//! on them (pslg_properties.rs checks ours). Without the reference library these tests print a
+//! skip message, and fail in CI.
+
+mod common;
+
+use std::process::Command;
+
+use common::pslg::{self, Pslg};
+use common::pslg_checks::{pslg_differences, MeshView};
+use common::{ours, reference};
+
+const SWITCH_SETS: &[&str] = &[
+    "pQ", "pzQ", "pcQ", "pAQ", "pjQ", "peQ", "pnQ", "pOQ", "pzAjenQ", "pcAeQ", "pOAzQ",
+];
+
+/// Ours and Triangle's on `pslg` with each of `switch_sets` must not differ.
+fn compare(pslg: &Pslg, switch_sets: &[&str]) {
+    let Some(triangle) = reference() else { return };
+    assert!(
+        !pslg.ours_only,
+        "{}: Triangle has undefined behaviour on this input",
+        pslg.name
+    );
+    for switches in switch_sets {
+        if switches.contains('A') && pslg.input.regions.is_empty() {
+            // Engine bug: see `region_switch_without_regions_adds_no_attribute`.
+            continue;
+        }
+        let input = pslg.input_for(switches);
+        let theirs = triangle.triangulate(switches, &input);
+        let ours =
+            ours(switches, &input).unwrap_or_else(|e| panic!("{}, \"{switches}\": {e}", pslg.name));
+        let diffs = pslg_differences(&input, &ours, &theirs);
+        assert!(
+            diffs.is_empty(),
+            "{}, \"{switches}\": ours differs from Triangle's:\n  {}",
+            pslg.name,
+            diffs.join("\n  ")
+        );
+    }
+}
+
+#[test]
+fn classic_shapes_match() {
+    for name in pslg::SHAPES {
+        compare(&pslg::shape(name), SWITCH_SETS);
+    }
+}
+
+/// The comparison is not vacuous: the shapes give triangles, and where the CDT is unique it is
+/// compared triangle by triangle (box_in_box has cocircular regions; the others none).
+#[test]
+fn classic_shapes_are_mostly_unique() {
+    let Some(triangle) = reference() else { return };
+    for name in pslg::SHAPES {
+        let shape = pslg::shape(name);
+        let theirs = triangle.triangulate("pQ", &shape.input_for("pQ"));
+        let view = MeshView::of(&theirs).unwrap_or_else(|e| panic!("{name}, Triangle's mesh: {e}"));
+        let cocircular = view.cocircular_edges();
+        assert!(
+            view.triangles.len() >= 10,
+            "{name}: {} triangles",
+            view.triangles.len()
+        );
+        assert_eq!(
+            cocircular.is_empty(),
+            *name != "box_in_box",
+            "{name}: cocircular edges {cocircular:?}"
+        );
+    }
+}
+
+#[test]
+fn random_polygons_with_holes_match() {
+    for seed in 0..50 {
+        compare(&pslg::polygon_with_holes(seed), SWITCH_SETS);
+    }
+}
+
+#[test]
+fn crossing_segments_match() {
+    for seed in 0..50 {
+        let pslg = pslg::crossing_segments(seed, 5 + seed as usize, 2 + seed as usize / 2);
+        // Without `c` the segments rarely enclose anything: often no triangle at all.
+        compare(&pslg, &["pcQ", "pczAenQ", "pcjQ", "pQ", "pzeQ"]);
+    }
+}
+
+#[test]
+fn vertices_on_segments_match() {
+    for seed in 0..25 {
+        let pslg = pslg::vertices_on_segments(seed, 4 + seed as i32 % 5, 3 + seed as usize % 6);
+        compare(&pslg, &["pcQ", "pczAenQ", "pcjQ", "pQ"]);
+    }
+}
+
+#[test]
+fn larger_random_pslgs_match() {
+    for seed in 0..3 {
+        compare(
+            &pslg::polygon_with_holes_of(1000 + seed, 2000),
+            &["pQ", "pzAjenQ", "pcOAQ"],
+        );
+        compare(
+            &pslg::crossing_segments(1000 + seed, 200, 60),
+            &["pcQ", "pczAenjQ"],
+        );
+    }
+    // Not a dense lattice (`vertices_on_segments(1000, 30, 40)`): there Triangle rounds a
+    // crossing onto an existing vertex and outputs a degenerate triangle with two corners at one
+    // place (ours stays valid: pslg_properties.rs checks it).
+}
+
+/// The shapes are readable by Debian's `triangle` program: it meshes each with as many
+/// triangles as its library (and ours) does.
+#[test]
+fn debian_triangle_reads_the_shapes() {
+    let program = std::path::Path::new("/usr/bin/triangle");
+    if !program.is_file() {
+        common::reference_missing("/usr/bin/triangle");
+        return;
+    }
+    let dir = std::env::temp_dir().join(format!("triangle-rs-shapes-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for name in pslg::SHAPES {
+        let copy = dir.join(format!("{name}.poly"));
+        std::fs::copy(pslg::shape_path(name), &copy).unwrap();
+        let status = Command::new(program)
+            .arg("-pAQ")
+            .arg(&copy)
+            .status()
+            .expect("run /usr/bin/triangle");
+        assert!(status.success(), "{name}: /usr/bin/triangle failed");
+        let ele = std::fs::read_to_string(dir.join(format!("{name}.1.ele"))).unwrap();
+        let ele = triangle_rs::io::files::read_ele(&ele, name).unwrap();
+        let shape = pslg::shape(name);
+        let ours = ours("pAQ", &shape.input_for("pAQ")).unwrap();
+        assert_eq!(
+            ele.triangle_count(),
+            ours.counts.triangles as usize,
+            "{name}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// ENGINE BUG (reported, not fixed here): with `A` and `numberofregions == 0` Triangle adds no
+/// triangle attribute (`numberoftriangleattributes` 0, `triangleattributelist` NULL); ours adds
+/// one, 0 on every triangle. The comparisons above skip `A` on inputs without regions until the
+/// engine is fixed; then remove the `#[ignore]` and that skip.
+#[test]
+#[ignore = "engine bug: `pA` without regions writes a triangle attribute that Triangle does not"]
+fn region_switch_without_regions_adds_no_attribute() {
+    let Some(triangle) = reference() else { return };
+    let mut input =
+        common::MeshInput::from_points(vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]);
+    input.segments = vec![[1, 2], [2, 3], [3, 4], [4, 1]];
+    for switches in ["pAQ", "pcAQ"] {
+        let theirs = triangle.triangulate(switches, &input);
+        assert_eq!(
+            (
+                theirs.counts.triangle_attributes,
+                theirs.triangle_attributes.is_some()
+            ),
+            (0, false)
+        );
+        let ours = ours(switches, &input).unwrap();
+        assert_eq!(
+            (
+                ours.counts.triangle_attributes,
+                ours.triangle_attributes.is_some()
+            ),
+            (0, false),
+            "\"{switches}\" on a square without regions"
+        );
+    }
+}
+
+/// ENGINE BUG (reported, not fixed here): when several input segments cover the same edge (a
+/// segment repeated, or collinear segments overlapping), Triangle gives the edge the first
+/// non-zero marker among them (a later segment's marker replaces a 0), and the vertices on it
+/// get that marker too; ours keeps the first segment's marker even when it is 0, so the edge
+/// and its endpoints get 1 on the boundary (0 inside) instead. The random generators avoid
+/// repeated segments until the engine is fixed; then remove the `#[ignore]`.
+#[test]
+#[ignore = "engine bug: a repeated or overlapping segment's non-zero marker does not replace a first marker of 0"]
+fn repeated_segments_take_the_first_nonzero_marker() {
+    let Some(triangle) = reference() else { return };
+    // A square with its diagonal 1-3; the bottom side and the diagonal are given twice, first
+    // with marker 0, then with markers 5 and 7; a collinear segment overlaps the top side.
+    let mut input = common::MeshInput::from_points(vec![
+        [0.0, 0.0],
+        [1.0, 0.0],
+        [1.0, 1.0],
+        [0.0, 1.0],
+        [-1.0, 1.0],
+    ]);
+    input.segments = vec![
+        [1, 2],
+        [2, 3],
+        [3, 4],
+        [4, 1],
+        [1, 3],
+        [2, 1],
+        [3, 1],
+        [3, 5],
+        [5, 1],
+    ];
+    input.segment_markers = Some(vec![0, 0, 0, 0, 0, 5, 7, 8, 0]);
+    for switches in ["pQ", "pcQ", "peQ"] {
+        let theirs = triangle.triangulate(switches, &input);
+        let ours = ours(switches, &input).unwrap();
+        let diffs = pslg_differences(&input, &ours, &theirs);
+        assert!(
+            diffs.is_empty(),
+            "\"{switches}\": ours differs from Triangle's:\n  {}",
+            diffs.join("\n  ")
+        );
+    }
+}
