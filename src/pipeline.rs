@@ -125,12 +125,11 @@ fn run<P: Predicates>(
     if !degenerate && (options.pslg || options.convex_hull || options.quality()) {
         let mut cdt = Constrainer::new(Inserter::<P>::new(std::mem::take(&mut meshed.mesh)));
         if options.pslg {
-            insert_segments(&mut cdt, input, &duplicate_of, base, &mut meshed.segment_markers, &mut output.warnings);
+            insert_segments(&mut cdt, input, &duplicate_of, base, &mut output.warnings);
         }
         if options.convex_hull || !options.pslg {
             // `c`, or refinement of a point set: the hull edges are segments (marker 1).
-            cdt.mark_hull(meshed.segment_markers.len() as u32);
-            meshed.segment_markers.push(1);
+            cdt.mark_hull(1);
         }
         for c in &cdt.crossings {
             // New vertices where segments cross: attributes interpolated along the crossed one.
@@ -160,6 +159,7 @@ fn run<P: Predicates>(
             let report = Refiner::new(options.conforming_delaunay, &mut cdt, &meshed.domain, &quality, kinds, &mut meshed.point_attributes, k).run();
             output.warnings.extend(report.warnings);
         }
+        meshed.segment_markers = std::mem::take(&mut cdt.markers);
         meshed.mesh = cdt.inserter.mesh;
         // New vertices (crossings, Steiner points) have no input marker.
         meshed.point_markers.resize(meshed.mesh.points.len(), 0);
@@ -180,14 +180,12 @@ fn insert_segments<P: Predicates>(
     input: &Input<'_>,
     duplicate_of: &[u32],
     base: i32,
-    markers: &mut Vec<i32>,
     warnings: &mut Vec<String>,
 ) {
     let n = input.point_count() as i64;
     for (i, s) in input.segments.chunks_exact(2).enumerate() {
         let marker = input.segment_markers.map_or(0, |m| m[i]);
-        let id = markers.len() as u32;
-        markers.push(marker);
+        let id = cdt.new_segment_id(marker);
         let ends = [s[0] as i64 - base as i64, s[1] as i64 - base as i64];
         if ends.iter().any(|&v| v < 0 || v >= n) {
             warnings.push(format!(
@@ -248,7 +246,7 @@ fn write_outputs(options: &Options, input: &Input<'_>, meshed: &Meshed, mut outp
     };
     let numbering = finished.numbering(options.jettison);
     finished.write(options, &numbering, &mut output);
-    if options.region_attributes {
+    if options.region_attributes && input.region_count() > 0 {
         // `A`: one more triangle attribute, the region's (0 outside every region).
         let attributes = numbering.triangles.iter().map(|&t| meshed.domain.attribute[mesh.tag[t as usize] as usize]).collect();
         output.triangle_attribute_count = 1;

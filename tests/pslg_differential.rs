@@ -31,10 +31,6 @@ fn compare(pslg: &Pslg, switch_sets: &[&str]) {
         pslg.name
     );
     for switches in switch_sets {
-        if switches.contains('A') && pslg.input.regions.is_empty() {
-            // Engine bug: see `region_switch_without_regions_adds_no_attribute`.
-            continue;
-        }
         let input = pslg.input_for(switches);
         let theirs = triangle.triangulate(switches, &input);
         let ours =
@@ -153,12 +149,9 @@ fn debian_triangle_reads_the_shapes() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// ENGINE BUG (reported, not fixed here): with `A` and `numberofregions == 0` Triangle adds no
-/// triangle attribute (`numberoftriangleattributes` 0, `triangleattributelist` NULL); ours adds
-/// one, 0 on every triangle. The comparisons above skip `A` on inputs without regions until the
-/// engine is fixed; then remove the `#[ignore]` and that skip.
+/// With `A` and `numberofregions == 0` Triangle adds no triangle attribute
+/// (`numberoftriangleattributes` 0, `triangleattributelist` NULL); neither do we.
 #[test]
-#[ignore = "engine bug: `pA` without regions writes a triangle attribute that Triangle does not"]
 fn region_switch_without_regions_adds_no_attribute() {
     let Some(triangle) = reference() else { return };
     let mut input =
@@ -185,14 +178,10 @@ fn region_switch_without_regions_adds_no_attribute() {
     }
 }
 
-/// ENGINE BUG (reported, not fixed here): when several input segments cover the same edge (a
-/// segment repeated, or collinear segments overlapping), Triangle gives the edge the first
-/// non-zero marker among them (a later segment's marker replaces a 0), and the vertices on it
-/// get that marker too; ours keeps the first segment's marker even when it is 0, so the edge
-/// and its endpoints get 1 on the boundary (0 inside) instead. The random generators avoid
-/// repeated segments until the engine is fixed; then remove the `#[ignore]`.
+/// When several input segments cover the same edge (a segment repeated, or collinear segments
+/// overlapping), Triangle gives the edge the first non-zero marker among them (a later segment's
+/// marker replaces a 0), and the vertices on it get that marker too; so do we.
 #[test]
-#[ignore = "engine bug: a repeated or overlapping segment's non-zero marker does not replace a first marker of 0"]
 fn repeated_segments_take_the_first_nonzero_marker() {
     let Some(triangle) = reference() else { return };
     // A square with its diagonal 1-3; the bottom side and the diagonal are given twice, first

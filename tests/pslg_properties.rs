@@ -246,22 +246,17 @@ fn larger_random_pslgs() {
             check(&crossing, switches);
         }
     }
-    // Dense lattices (`vertices_on_segments(1000 + seed, 30, 40)`) are in the ignored
+    // Dense lattices (`vertices_on_segments(1000 + seed, 30, 40)`) are in
     // `segments_crossing_near_bent_segments_keep_their_course`.
 }
 
-/// ENGINE BUG (reported, not fixed here): when a segment crosses a piece of another segment
-/// that was bent at a rounded crossing and passes within rounding of a vertex lying on it (a
-/// sliver triangle beside the piece), the engine cannot split the piece cleanly there and snaps
-/// the crossing to the nearest corner of the quadrilateral, which may be far away: below, the
-/// segment (4, 4.5)–(13, 4.25) is routed through (11.352, 4.508), the crossing of the other two
-/// segments, 0.21 off its line (Triangle splits it at (10.887, 4.309) and (11.243, 4.299)).
-/// Dense lattices of segments hit it often (33 of 40 `vertices_on_segments(seed, 30, 40)`, 7 of
-/// the first 400 small ones of `vertices_on_segments_split_them`'s kind; Triangle itself crashes
-/// with "Topological inconsistency after splitting a segment" on some of those). Remove the
-/// `#[ignore]` once fixed.
+/// A segment crossing a piece of another segment that was bent at a rounded crossing, within
+/// rounding of a vertex lying on it (a sliver triangle beside the piece): the crossing cannot be
+/// split cleanly into the crossed edge, so it is inserted where it is and both segments bend
+/// through it. Below, the segment (4, 4.5)–(13, 4.25) must stay on its course (Triangle splits
+/// it at (10.887, 4.309) and (11.243, 4.299)). Dense lattices of segments hit this often
+/// (Triangle itself crashes with "Topological inconsistency after splitting a segment" on some).
 #[test]
-#[ignore = "engine bug: a crossing near a bent segment piece snaps to a far vertex"]
 fn segments_crossing_near_bent_segments_keep_their_course() {
     let input = common::MeshInput {
         points: vec![

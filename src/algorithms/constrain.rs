@@ -52,6 +52,8 @@ pub struct Constrainer<P: Predicates> {
     pub inserter: Inserter<P>,
     /// Vertices created at crossings, in creation order.
     pub crossings: Vec<Crossing>,
+    /// The marker of each segment id (the ids that [`Mesh::segment`](crate::mesh::Mesh) holds).
+    pub markers: Vec<i32>,
 }
 
 impl<P: Predicates> Constrainer<P> {
@@ -59,7 +61,7 @@ impl<P: Predicates> Constrainer<P> {
     pub fn new(mut inserter: Inserter<P>) -> Self {
         inserter.mesh.track_vertex_edges();
         inserter.mesh.track_segments();
-        Constrainer { inserter, crossings: Vec::new() }
+        Constrainer { inserter, crossings: Vec::new(), markers: Vec::new() }
     }
 
     fn pt(&self, v: u32) -> Point {
@@ -70,8 +72,14 @@ impl<P: Predicates> Constrainer<P> {
         P::orient2d(self.pt(a), self.pt(b), self.pt(c))
     }
 
-    /// Inserts the segment from vertex `a` to vertex `b` with id `id`. Both must be vertices of
-    /// the triangulation.
+    /// Registers a segment marker; returns the new segment's id.
+    pub fn new_segment_id(&mut self, marker: i32) -> u32 {
+        self.markers.push(marker);
+        (self.markers.len() - 1) as u32
+    }
+
+    /// Inserts the segment from vertex `a` to vertex `b` with id `id` (from
+    /// [`Self::new_segment_id`]). Both must be vertices of the triangulation.
     pub fn insert_segment(&mut self, a: u32, b: u32, id: u32) {
         let mut work = vec![(a, b, id)];
         while let Some((a, b, id)) = work.pop() {
@@ -82,7 +90,10 @@ impl<P: Predicates> Constrainer<P> {
                 Walk::Along(e) => {
                     let mesh = &mut self.inserter.mesh;
                     let c = mesh.dest(e);
-                    if mesh.segment_of(e) == NONE {
+                    // Where segments overlap, a later non-zero marker replaces a zero one, as in
+                    // Triangle.
+                    let old = mesh.segment_of(e);
+                    if old == NONE || (self.markers[old as usize] == 0 && self.markers[id as usize] != 0) {
                         mesh.set_segment(e, id);
                     }
                     work.push((c, b, id));
@@ -190,12 +201,18 @@ impl<P: Predicates> Constrainer<P> {
             && P::orient2d(pu, pd, p) > 0.0
             && P::orient2d(pd, pv, p) > 0.0;
         if !splits_cleanly {
-            let dist = |q: Point| (q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2);
-            let nearest = [u, v, c, d].into_iter().min_by(|&x, &y| dist(self.pt(x)).total_cmp(&dist(self.pt(y)))).unwrap();
-            return if nearest == u || nearest == v {
-                CrossingPoint::Existing(nearest)
-            } else {
-                CrossingPoint::ThroughVertex(nearest)
+            // The rounded crossing is not inside the crossed edge's quadrilateral (next to a
+            // sliver left by an earlier bent segment): insert it where it is, and let both
+            // segments bend through it.
+            let start = triangle_of(e);
+            return match self.inserter.locate(p, start) {
+                Location::OnVertex(w) => CrossingPoint::ThroughVertex(w),
+                location => {
+                    let vertex = self.inserter.mesh.add_point(p);
+                    let _ = self.inserter.insert_at(vertex, location);
+                    self.crossings.push(Crossing { vertex, from: u, to: v, t });
+                    CrossingPoint::ThroughVertex(vertex)
+                }
             };
         }
         let vertex = self.inserter.mesh.add_point(p);
@@ -261,8 +278,10 @@ impl<P: Predicates> Constrainer<P> {
         }
     }
 
-    /// Marks every hull edge as a segment with id `id` (the `c` switch).
-    pub fn mark_hull(&mut self, id: u32) {
+    /// Marks every hull edge that is not a segment yet as a segment with marker `marker` (the `c`
+    /// switch, and refinement of a point set).
+    pub fn mark_hull(&mut self, marker: i32) {
+        let id = self.new_segment_id(marker);
         let mesh = &mut self.inserter.mesh;
         for e in 0..mesh.corners.len() as u32 {
             let (a, b) = (mesh.origin(e), mesh.dest(e));
