@@ -152,6 +152,49 @@ impl FinishedMesh<'_> {
             .collect()
     }
 
+    /// `o2`: a node at the midpoint of every edge, appended to the points (attributes averaged,
+    /// the edge's marker), and six nodes per triangle: the corners, then the midpoints opposite
+    /// corners 1, 2 and 3.
+    fn write_second_order(&self, options: &Options, numbering: &Numbering, output: &mut Output) {
+        let base = options.first_index();
+        let first = numbering.vertex_count as u32;
+        let mut node_of_half_edge = vec![NONE; self.mesh.corners.len()];
+        for (i, &e) in numbering.edges.iter().enumerate() {
+            node_of_half_edge[e as usize] = first + i as u32;
+            node_of_half_edge[self.mesh.twin(e) as usize] = first + i as u32;
+        }
+        output.point_count += numbering.edges.len();
+        output.corners = 6;
+        let ends = |e: u32| (self.mesh.origin(e) as usize, self.mesh.dest(e) as usize);
+        if let Some(points) = output.points.as_mut() {
+            for &e in &numbering.edges {
+                let (a, b) = ends(e);
+                let (p, q) = (self.mesh.points[a], self.mesh.points[b]);
+                points.extend_from_slice(&[0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1])]);
+            }
+        }
+        if let Some(attributes) = output.point_attributes.as_mut() {
+            let k = self.point_attribute_count;
+            for &e in &numbering.edges {
+                let (a, b) = ends(e);
+                attributes.extend((0..k).map(|i| 0.5 * (self.point_attributes[a * k + i] + self.point_attributes[b * k + i])));
+            }
+        }
+        if let Some(markers) = output.point_markers.as_mut() {
+            markers.extend(numbering.edges.iter().map(|&e| self.edge_marker(e)));
+        }
+        if !options.no_element_output {
+            let mut tris = Vec::with_capacity(6 * numbering.triangles.len());
+            for &t in &numbering.triangles {
+                tris.extend(self.mesh.triangle(t).map(|v| numbering.vertex_index(v) as i32 + base));
+                for slot in [1, 2, 0] {
+                    tris.push(node_of_half_edge[(3 * t + slot) as usize] as i32 + base);
+                }
+            }
+            output.triangles = Some(tris);
+        }
+    }
+
     fn edge_marker(&self, e: u32) -> i32 {
         match self.segment_marker_of(e) {
             Some(m) if m != 0 => m,
@@ -184,7 +227,9 @@ impl FinishedMesh<'_> {
 
         output.triangle_count = numbering.triangles.len();
         output.corners = 3;
-        if !options.no_element_output {
+        if options.second_order {
+            self.write_second_order(options, numbering, output);
+        } else if !options.no_element_output {
             let mut tris = Vec::with_capacity(3 * numbering.triangles.len());
             for &t in &numbering.triangles {
                 tris.extend(self.mesh.triangle(t).map(vid));

@@ -4,6 +4,7 @@
 use crate::assemble::FinishedMesh;
 use crate::algorithms::constrain::Constrainer;
 use crate::algorithms::domain::{carve, Domain};
+use crate::algorithms::reconstruct::reconstruct;
 use crate::algorithms::refine::{Quality, Refiner, VertexKind};
 use crate::data::{Hooks, Input, Output, VoronoiOutput};
 use crate::algorithms::delaunay::{self, merge, order, Inserter, Triangulation};
@@ -19,8 +20,6 @@ const BRIO_SEED: u64 = 0x7269_616E_676C_6521;
 /// Rejects the switches whose features have not landed yet, with a clear message.
 fn check_supported(options: &Options) -> Result<(), Error> {
     let unsupported = [
-        (options.refine, "The `r` switch (refining a mesh)"),
-        (options.second_order, "The `o2` switch (second-order triangles)"),
         (options.split_segments, "The `s` switch (segment splitting)"),
         (options.weighted != 0, "The `w`/`W` switches (weighted triangulation)"),
     ];
@@ -97,21 +96,28 @@ fn run<P: Predicates>(
     points: Vec<Point>,
 ) -> Result<(Output, VoronoiOutput), Error> {
     let n = points.len();
-    let Triangulation { mesh, duplicate_of } = delaunay_with::<P>(options, points);
     let mut output = Output::default();
     let base = options.first_index();
-    for (v, &u) in duplicate_of.iter().enumerate() {
-        if u != NONE {
-            let p = mesh.points[v];
-            output.warnings.push(format!(
-                "A duplicate vertex at ({}, {}) appeared and was ignored (vertex {} duplicates vertex {}).",
-                p[0],
-                p[1],
-                v as i32 + base,
-                u as i32 + base
-            ));
+    // The starting mesh: the given triangles (`r`), or the Delaunay triangulation of the points.
+    let (mesh, duplicate_of) = if options.refine {
+        let mesh = reconstruct::<P>(points, input.triangles, input.corners, base)?;
+        (mesh, vec![NONE; n])
+    } else {
+        let Triangulation { mesh, duplicate_of } = delaunay_with::<P>(options, points);
+        for (v, &u) in duplicate_of.iter().enumerate() {
+            if u != NONE {
+                let p = mesh.points[v];
+                output.warnings.push(format!(
+                    "A duplicate vertex at ({}, {}) appeared and was ignored (vertex {} duplicates vertex {}).",
+                    p[0],
+                    p[1],
+                    v as i32 + base,
+                    u as i32 + base
+                ));
+            }
         }
-    }
+        (mesh, duplicate_of)
+    };
     let k = input.point_attribute_count;
     let mut meshed = Meshed {
         point_attributes: input.point_attributes.to_vec(),
@@ -122,13 +128,14 @@ fn run<P: Predicates>(
         mesh,
     };
     let degenerate = meshed.mesh.triangle_count() == 0;
-    if !degenerate && (options.pslg || options.convex_hull || options.quality()) {
+    if !degenerate && (options.pslg || options.convex_hull || options.quality() || options.refine) {
         let mut cdt = Constrainer::new(Inserter::<P>::new(std::mem::take(&mut meshed.mesh)));
         if options.pslg {
             insert_segments(&mut cdt, input, &duplicate_of, base, &mut output.warnings);
         }
-        if options.convex_hull || !options.pslg {
-            // `c`, or refinement of a point set: the hull edges are segments (marker 1).
+        if options.convex_hull || options.refine || !options.pslg {
+            // `c`, the boundary of a mesh being refined (`r`), or refinement of a point set: the
+            // boundary edges are segments (marker 1).
             cdt.mark_hull(1);
         }
         for c in &cdt.crossings {
@@ -140,7 +147,10 @@ fn run<P: Predicates>(
             }
         }
         let holes: &[f64] = if options.ignore_holes { &[] } else { input.holes };
-        meshed.domain = if options.pslg {
+        meshed.domain = if options.refine {
+            let areas = if options.variable_area { input.triangle_areas } else { None };
+            Domain::per_triangle(&mut cdt.inserter.mesh, input.triangle_count(), input.triangle_attributes, areas)
+        } else if options.pslg {
             carve(&mut cdt, options.convex_hull, holes, input.regions)
         } else {
             Domain::whole(&mut cdt.inserter.mesh)
@@ -156,8 +166,16 @@ fn run<P: Predicates>(
                 cancel: hooks.cancel,
             };
             let kinds = vec![VertexKind::Input; cdt.inserter.mesh.points.len()];
-            let report = Refiner::new(options.conforming_delaunay, &mut cdt, &meshed.domain, &quality, kinds, &mut meshed.point_attributes, k).run();
-            output.warnings.extend(report.warnings);
+            let refiner = Refiner::new(
+                options.conforming_delaunay,
+                &mut cdt,
+                &meshed.domain,
+                &quality,
+                kinds,
+                &mut meshed.point_attributes,
+                k,
+            );
+            output.warnings.extend(refiner.run().warnings);
         }
         meshed.segment_markers = std::mem::take(&mut cdt.markers);
         meshed.mesh = cdt.inserter.mesh;
@@ -165,6 +183,9 @@ fn run<P: Predicates>(
         meshed.point_markers.resize(meshed.mesh.points.len(), 0);
     } else {
         meshed.domain = Domain::whole(&mut meshed.mesh);
+    }
+    if options.check {
+        output.warnings.push(check_mesh::<P>(&meshed));
     }
     if options.pslg && !options.no_poly_output {
         output.alias_holes_and_regions = true;
@@ -246,10 +267,13 @@ fn write_outputs(options: &Options, input: &Input<'_>, meshed: &Meshed, mut outp
     };
     let numbering = finished.numbering(options.jettison);
     finished.write(options, &numbering, &mut output);
-    if options.region_attributes && input.region_count() > 0 {
-        // `A`: one more triangle attribute, the region's (0 outside every region).
-        let attributes = numbering.triangles.iter().map(|&t| meshed.domain.attribute[mesh.tag[t as usize] as usize]).collect();
-        output.triangle_attribute_count = 1;
+    // Triangle attributes: with `r` the input triangles' (inherited by their pieces), with `A`
+    // (and regions) the region's (0 outside every region).
+    let domain = &meshed.domain;
+    if (options.refine || (options.region_attributes && input.region_count() > 0)) && domain.attribute_count > 0 {
+        let attributes =
+            numbering.triangles.iter().flat_map(|&t| domain.attributes_of(mesh.tag[t as usize])).copied().collect();
+        output.triangle_attribute_count = domain.attribute_count;
         output.triangle_attributes = (!options.no_element_output).then_some(attributes);
     }
     let base = options.first_index();
@@ -263,4 +287,35 @@ fn write_outputs(options: &Options, input: &Input<'_>, meshed: &Meshed, mut outp
         voronoi.diagram = Some(voronoi_diagram(&finished, &numbering, base));
     }
     (output, voronoi)
+}
+
+/// `C`: checks the final mesh with exact arithmetic and reports what it found.
+fn check_mesh<P: Predicates>(meshed: &Meshed) -> String {
+    let mesh = &meshed.mesh;
+    if let Err(why) = mesh.check_topology() {
+        return format!("Mesh check: the topology is inconsistent: {why}.");
+    }
+    let mut inverted = 0;
+    let mut not_delaunay = 0;
+    for t in 0..mesh.triangle_count() {
+        if mesh.is_ghost(t) {
+            continue;
+        }
+        let [a, b, c] = mesh.triangle(t).map(|v| mesh.point(v));
+        if P::orient2d(a, b, c) <= 0.0 {
+            inverted += 1;
+        }
+        for e in 3 * t..3 * t + 3 {
+            let q = mesh.apex(mesh.twin(e));
+            if q != GHOST && !mesh.is_segment(e) && P::incircle(a, b, c, mesh.point(q)) > 0.0 {
+                not_delaunay += 1;
+            }
+        }
+    }
+    match (inverted, not_delaunay) {
+        (0, 0) => "Mesh check: the mesh appears to be consistent, and constrained Delaunay.".into(),
+        _ => format!(
+            "Mesh check: {inverted} triangles are inverted or flat and {not_delaunay} edges are not locally Delaunay."
+        ),
+    }
 }

@@ -339,7 +339,8 @@ mod tests {
             for k in 0..10 {
                 let a = (splitmix64(&mut s) % n as u64) as u32;
                 let b = (splitmix64(&mut s) % n as u64) as u32;
-                cdt.insert_segment(a, b, k);
+                let id = cdt.new_segment_id(k as i32 % 3);
+                cdt.insert_segment(a, b, id);
                 let m = &cdt.inserter.mesh;
                 m.check_topology().unwrap_or_else(|e| panic!("seed {seed}: {e}"));
                 for t in m.real_triangles() {

@@ -13,9 +13,12 @@ use crate::mesh::{triangle_of, Mesh, OUTSIDE};
 /// ghosts, [`INSIDE`] for the domain outside every region, `FIRST_REGION + r` for region `r`.
 #[derive(Clone, Debug, Default)]
 pub struct Domain {
-    /// Per tag: the regional attribute (0 outside every region).
-    pub attribute: Vec<f64>,
-    /// Per tag: the regional maximum area (≤ 0: none).
+    /// Triangle attributes per tag.
+    pub attribute_count: usize,
+    /// `attribute_count` values per tag: the regional attribute (0 outside every region), or
+    /// with `r` the input triangle's attributes.
+    pub attributes: Vec<f64>,
+    /// Per tag: the maximum area (≤ 0: none).
     pub max_area: Vec<f64>,
 }
 
@@ -26,7 +29,27 @@ impl Domain {
     /// The domain without regions: every non-ghost triangle is inside.
     pub fn whole(mesh: &mut Mesh) -> Domain {
         mesh.tag = (0..mesh.triangle_count()).map(|t| if mesh.is_ghost(t) { OUTSIDE } else { INSIDE }).collect();
-        Domain { attribute: vec![0.0; 2], max_area: vec![-1.0; 2] }
+        Domain { attribute_count: 0, attributes: Vec::new(), max_area: vec![-1.0; 2] }
+    }
+
+    /// The domain of a reconstructed mesh (`r`): input triangle `i` is tagged
+    /// `FIRST_REGION + i`, with its attributes and maximum area; ghosts are outside.
+    pub fn per_triangle(mesh: &mut Mesh, input_triangles: usize, attributes: &[f64], areas: Option<&[f64]>) -> Domain {
+        mesh.tag = (0..mesh.triangle_count())
+            .map(|t| if (t as usize) < input_triangles { FIRST_REGION + t } else { OUTSIDE })
+            .collect();
+        let attribute_count = if input_triangles == 0 { 0 } else { attributes.len() / input_triangles };
+        let mut all_attributes = vec![0.0; FIRST_REGION as usize * attribute_count];
+        all_attributes.extend_from_slice(attributes);
+        let mut max_area = vec![-1.0; FIRST_REGION as usize];
+        max_area.extend((0..input_triangles).map(|i| areas.map_or(-1.0, |a| a[i])));
+        Domain { attribute_count, attributes: all_attributes, max_area }
+    }
+
+    /// The attributes of the triangles of tag `tag`.
+    pub fn attributes_of(&self, tag: u32) -> &[f64] {
+        let k = self.attribute_count;
+        &self.attributes[tag as usize * k..tag as usize * k + k]
     }
 }
 
@@ -83,10 +106,12 @@ pub fn carve<P: Predicates>(
     flood(&cdt.inserter.mesh, seeds, |t| std::mem::replace(&mut tag[t as usize], OUTSIDE) != OUTSIDE);
 
     let mut domain = domain;
+    domain.attribute_count = 1;
+    domain.attributes = vec![0.0; FIRST_REGION as usize];
     for (r, region) in regions.chunks_exact(4).enumerate() {
         let point: Point = [region[0], region[1]];
         let region_tag = FIRST_REGION + r as u32;
-        domain.attribute.push(region[2]);
+        domain.attributes.push(region[2]);
         domain.max_area.push(region[3]);
         let Some(t) = cdt.triangle_at(point) else { continue };
         flood(&cdt.inserter.mesh, vec![t], |u| {

@@ -4,5 +4,6 @@
 pub mod constrain;
 pub mod delaunay;
 pub mod domain;
+pub mod reconstruct;
 pub mod refine;
 pub mod voronoi;

@@ -224,10 +224,9 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         let theta = degrees.clamp(0.0, 60.0).to_radians();
         let cos = theta.cos();
         self.cos2_min_angle = if theta > 0.0 { cos * cos } else { 2.0 };
-        // With no angle bound the lens would be empty; diametral circles then keep the angles
-        // of area-driven refinement from degrading (Triangle splits no segment there).
-        self.lens_cos2 =
-            (theta > 0.0 && theta < std::f64::consts::FRAC_PI_4 && !self.conforming).then(|| (2.0 * theta).cos().powi(2));
+        // With no angle bound the lens is empty: nothing encroaches, as in Triangle (only a
+        // segment hiding a new point from its triangle is split then).
+        self.lens_cos2 = (theta < std::f64::consts::FRAC_PI_4 && !self.conforming).then(|| (2.0 * theta).cos().powi(2));
         self.off_center = if theta > 0.0 { 0.475 * ((1.0 + cos) / (1.0 - cos)).sqrt() } else { f64::INFINITY };
     }
 
@@ -287,7 +286,7 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
 
     /// Whether `w` encroaches subsegment `u`–`v`: lies in its diametral lens (without `D`:
     /// `u`–`v` subtends at least 180° − 2θ at `w`, Shewchuk 2002 §3.2, which inserts fewer
-    /// vertices), else strictly inside its diametral circle.
+    /// vertices; with no angle bound, never), else strictly inside its diametral circle.
     fn encroaches(&self, u: u32, v: u32, w: Point) -> bool {
         let (pu, pv) = (self.pt(u), self.pt(v));
         let (a, b) = ([pu[0] - w[0], pu[1] - w[1]], [pv[0] - w[0], pv[1] - w[1]]);

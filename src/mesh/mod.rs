@@ -343,6 +343,23 @@ impl Mesh {
         self.link(3 * t2 + 1, tw_bp);
         self.link(3 * t1 + 1, 3 * t2 + 2);
         self.refresh(&[t1, t2], &[3 * t1 + 1, 3 * t2 + 2]);
+        if !self.tag.is_empty() {
+            let (tag1, tag2) = (self.tag[t1 as usize], self.tag[t2 as usize]);
+            if tag1 != tag2 {
+                // Tags mark parts of the plane (with `r`, each input triangle's area bound and
+                // attributes): a new triangle takes the tag of the old one its centroid is in.
+                let (pa, pb) = (self.point(a), self.point(b));
+                let side = |x: u32, y: u32, z: u32| {
+                    let (px, py, pz) = (self.point(x), self.point(y), self.point(z));
+                    let g = [(px[0] + py[0] + pz[0]) / 3.0, (px[1] + py[1] + pz[1]) / 3.0];
+                    let left = (pb[0] - pa[0]) * (g[1] - pa[1]) - (pb[1] - pa[1]) * (g[0] - pa[0]) > 0.0;
+                    if left { tag1 } else { tag2 }
+                };
+                let (new1, new2) = (side(a, q, p), side(q, b, p));
+                self.tag[t1 as usize] = new1;
+                self.tag[t2 as usize] = new2;
+            }
+        }
         [t1, t2]
     }
 

@@ -1,0 +1,123 @@
+//! `r`: rebuilds the mesh topology from a triangle list (a previous run's output).
+//!
+//! Twins are found by matching each directed edge with its reverse. The boundary of the mesh —
+//! which need not be convex, and may have holes or vertices where two parts touch — is covered
+//! with ghost triangles as in [`crate::mesh`]: one per boundary edge, linked to its neighbours
+//! around each boundary vertex by turning, inside the mesh, from one boundary edge to the next.
+
+use std::collections::HashMap;
+
+use crate::error::Error;
+use crate::geometry::{Point, Predicates};
+use crate::mesh::{prev, triangle_of, Mesh, GHOST, NONE};
+
+/// Builds the mesh of the given triangles (`corners` indices per triangle, the first three used,
+/// numbered from `base`). Triangle `i` of the input becomes triangle `i` of the mesh (turned
+/// counter-clockwise if it was clockwise); ghosts follow.
+pub fn reconstruct<P: Predicates>(points: Vec<Point>, triangles: &[i32], corners: usize, base: i32) -> Result<Mesh, Error> {
+    let n = points.len() as i64;
+    let count = triangles.len() / corners;
+    let mut mesh = Mesh::with_points(points);
+    for (i, tri) in triangles.chunks_exact(corners).enumerate() {
+        let mut v = [0u32; 3];
+        for k in 0..3 {
+            let index = tri[k] as i64 - base as i64;
+            if index < 0 || index >= n {
+                return Err(Error::InvalidTriangleVertex { triangle: i + base as usize });
+            }
+            v[k] = index as u32;
+        }
+        let o = P::orient2d(mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2]));
+        if o == 0.0 {
+            return Err(Error::InvalidMesh(format!("triangle {} has no area", i + base as usize)));
+        }
+        if o < 0.0 {
+            v.swap(1, 2);
+        }
+        mesh.add_triangle(v[0], v[1], v[2]);
+    }
+    // Twins: each directed edge meets its reverse.
+    let mut directed: HashMap<(u32, u32), u32> = HashMap::with_capacity(3 * count);
+    for e in 0..3 * count as u32 {
+        let key = (mesh.origin(e), mesh.dest(e));
+        if directed.insert(key, e).is_some() {
+            return Err(Error::InvalidMesh(format!(
+                "the edge from vertex {} to vertex {} belongs to more than two triangles (or two triangles overlap)",
+                key.0 as i64 + base as i64,
+                key.1 as i64 + base as i64
+            )));
+        }
+    }
+    for e in 0..3 * count as u32 {
+        if let Some(&f) = directed.get(&(mesh.dest(e), mesh.origin(e))) {
+            mesh.twins[e as usize] = f;
+        }
+    }
+    // A ghost (w, v, ∞) for each boundary half-edge v → w.
+    let boundary: Vec<u32> = (0..3 * count as u32).filter(|&e| mesh.twin(e) == NONE).collect();
+    for &h in &boundary {
+        let g = mesh.add_triangle(mesh.dest(h), mesh.origin(h), GHOST);
+        mesh.twins[h as usize] = 3 * g;
+        mesh.twins[3 * g as usize] = h;
+    }
+    // Around boundary vertex v, turn counter-clockwise from the boundary edge leaving v (h) to
+    // the boundary edge entering v in the same part of the mesh; their ghosts share v–∞.
+    for &h in &boundary {
+        let v = mesh.origin(h);
+        let mut e = h;
+        let entering = loop {
+            let p = prev(e);
+            let f = mesh.twin(p);
+            if mesh.is_ghost(triangle_of(f)) {
+                break f;
+            }
+            e = f;
+        };
+        let g = triangle_of(mesh.twin(h));
+        let ghost_prev = triangle_of(entering);
+        // Ghost of h: (w, v, ∞) with slot 1 = v → ∞; ghost of the entering edge x → v:
+        // (v, x, ∞) with slot 2 = ∞ → v.
+        debug_assert_eq!(mesh.corners[3 * ghost_prev as usize], v);
+        mesh.twins[(3 * g + 1) as usize] = 3 * ghost_prev + 2;
+        mesh.twins[(3 * ghost_prev + 2) as usize] = 3 * g + 1;
+    }
+    Ok(mesh)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Exact;
+
+    #[test]
+    fn square_with_a_hole_and_a_bowtie_vertex() {
+        // A 3×3 grid of unit squares without the middle one: an annulus of 16 triangles.
+        let mut points = Vec::new();
+        for j in 0..4 {
+            for i in 0..4 {
+                points.push([i as f64, j as f64]);
+            }
+        }
+        let mut tris = Vec::new();
+        for j in 0..3 {
+            for i in 0..3 {
+                if (i, j) == (1, 1) {
+                    continue;
+                }
+                let v = |a: i32, b: i32| (b * 4 + a) as i32;
+                tris.extend_from_slice(&[v(i, j), v(i + 1, j), v(i + 1, j + 1)]);
+                tris.extend_from_slice(&[v(i, j), v(i + 1, j + 1), v(i, j + 1)]);
+            }
+        }
+        // A clockwise triangle touching the grid at one corner (a bowtie vertex).
+        points.push([4.0, 4.0]);
+        points.push([3.0, 5.0]);
+        tris.extend_from_slice(&[15, 17, 16]);
+        let mesh = reconstruct::<Exact>(points, &tris, 3, 0).unwrap();
+        mesh.check_topology().unwrap();
+        let ghosts = (0..mesh.triangle_count()).filter(|&t| mesh.is_ghost(t)).count();
+        assert_eq!(ghosts, 12 + 4 + 3);
+        assert!(reconstruct::<Exact>(vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], &[0, 1, 3], 3, 0).is_err());
+        assert!(reconstruct::<Exact>(vec![[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]], &[0, 1, 2], 3, 0).is_err());
+    }
+}
