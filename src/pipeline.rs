@@ -206,7 +206,6 @@ fn insert_segments<P: Predicates>(
     let n = input.point_count() as i64;
     for (i, s) in input.segments.chunks_exact(2).enumerate() {
         let marker = input.segment_markers.map_or(0, |m| m[i]);
-        let id = cdt.new_segment_id(marker);
         let ends = [s[0] as i64 - base as i64, s[1] as i64 - base as i64];
         if ends.iter().any(|&v| v < 0 || v >= n) {
             warnings.push(format!(
@@ -235,6 +234,7 @@ fn insert_segments<P: Predicates>(
             ));
             continue;
         }
+        let id = cdt.new_segment_id(marker, a, b);
         cdt.insert_segment(a, b, id);
     }
 }

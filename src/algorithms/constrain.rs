@@ -54,6 +54,8 @@ pub struct Constrainer<P: Predicates> {
     pub crossings: Vec<Crossing>,
     /// The marker of each segment id (the ids that [`Mesh::segment`](crate::mesh::Mesh) holds).
     pub markers: Vec<i32>,
+    /// The input endpoints of each segment id (`(NONE, NONE)` for the hull's segments).
+    pub ends: Vec<(u32, u32)>,
 }
 
 impl<P: Predicates> Constrainer<P> {
@@ -61,7 +63,7 @@ impl<P: Predicates> Constrainer<P> {
     pub fn new(mut inserter: Inserter<P>) -> Self {
         inserter.mesh.track_vertex_edges();
         inserter.mesh.track_segments();
-        Constrainer { inserter, crossings: Vec::new(), markers: Vec::new() }
+        Constrainer { inserter, crossings: Vec::new(), markers: Vec::new(), ends: Vec::new() }
     }
 
     fn pt(&self, v: u32) -> Point {
@@ -72,9 +74,11 @@ impl<P: Predicates> Constrainer<P> {
         P::orient2d(self.pt(a), self.pt(b), self.pt(c))
     }
 
-    /// Registers a segment marker; returns the new segment's id.
-    pub fn new_segment_id(&mut self, marker: i32) -> u32 {
+    /// Registers a segment from `a` to `b` (or `NONE`s for a family of segments) with its
+    /// marker; returns the new segment's id.
+    pub fn new_segment_id(&mut self, marker: i32, a: u32, b: u32) -> u32 {
         self.markers.push(marker);
+        self.ends.push((a, b));
         (self.markers.len() - 1) as u32
     }
 
@@ -281,7 +285,7 @@ impl<P: Predicates> Constrainer<P> {
     /// Marks every hull edge that is not a segment yet as a segment with marker `marker` (the `c`
     /// switch, and refinement of a point set).
     pub fn mark_hull(&mut self, marker: i32) {
-        let id = self.new_segment_id(marker);
+        let id = self.new_segment_id(marker, NONE, NONE);
         let mesh = &mut self.inserter.mesh;
         for e in 0..mesh.corners.len() as u32 {
             let (a, b) = (mesh.origin(e), mesh.dest(e));
@@ -339,7 +343,7 @@ mod tests {
             for k in 0..10 {
                 let a = (splitmix64(&mut s) % n as u64) as u32;
                 let b = (splitmix64(&mut s) % n as u64) as u32;
-                let id = cdt.new_segment_id(k as i32 % 3);
+                let id = cdt.new_segment_id(k as i32 % 3, a, b);
                 cdt.insert_segment(a, b, id);
                 let m = &cdt.inserter.mesh;
                 m.check_topology().unwrap_or_else(|e| panic!("seed {seed}: {e}"));

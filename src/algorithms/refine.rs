@@ -20,7 +20,7 @@
 //! far above the floating-point resolution of the domain, skips (and reports) a triangle or
 //! segment it cannot split, and stops at the Steiner-point budget (`S`) or when cancelled.
 
-use std::collections::{BinaryHeap, HashSet, VecDeque};
+use std::collections::{HashSet, VecDeque};
 
 use crate::algorithms::constrain::Constrainer;
 use crate::algorithms::delaunay::Location;
@@ -64,23 +64,52 @@ pub enum VertexKind {
     Free,
 }
 
-/// A queued bad triangle, worst first.
+/// A queued bad triangle: its corners (it may be gone by the time it is taken out).
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct BadTriangle {
-    /// Larger is worse.
-    badness: f64,
+    /// Queue bucket: larger is worse.
+    bucket: usize,
     corners: [u32; 3],
 }
 
-impl Eq for BadTriangle {}
-impl PartialOrd for BadTriangle {
-    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
-        Some(self.cmp(other))
-    }
+/// Bad triangles, worst first, in buckets by how bad they are (a bucket queue: constant time per
+/// operation, where a binary heap of millions of triangles costs a cache miss per level).
+#[derive(Default)]
+struct BadQueue {
+    buckets: Vec<VecDeque<[u32; 3]>>,
+    /// No bucket above this one holds anything.
+    top: usize,
 }
-impl Ord for BadTriangle {
-    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
-        self.badness.total_cmp(&other.badness).then(self.corners.cmp(&other.corners))
+
+/// Buckets for triangles that are bad by their angle (finer toward the worst); one more, the
+/// lowest, for those bad only by area or the user's test.
+const ANGLE_BUCKETS: usize = 64;
+
+impl BadQueue {
+    fn new() -> Self {
+        BadQueue { buckets: (0..=ANGLE_BUCKETS).map(|_| VecDeque::new()).collect(), top: 0 }
+    }
+    fn push(&mut self, bad: BadTriangle) {
+        self.buckets[bad.bucket].push_back(bad.corners);
+        self.top = self.top.max(bad.bucket);
+    }
+    fn pop(&mut self) -> Option<BadTriangle> {
+        loop {
+            if let Some(corners) = self.buckets[self.top].pop_front() {
+                return Some(BadTriangle { bucket: self.top, corners });
+            }
+            if self.top == 0 {
+                return None;
+            }
+            self.top -= 1;
+        }
+    }
+    fn clear(&mut self) {
+        self.buckets.iter_mut().for_each(VecDeque::clear);
+        self.top = 0;
+    }
+    fn is_empty(&self) -> bool {
+        self.buckets.iter().all(VecDeque::is_empty)
     }
 }
 
@@ -123,7 +152,10 @@ pub struct Refiner<'r, 'q, P: Predicates> {
     encroached: VecDeque<(u32, u32, bool)>,
     /// Where refinement stops (the `S` budget, or the budget beyond the guaranteed angle).
     steiner_limit: Option<u64>,
-    bad: BinaryHeap<BadTriangle>,
+    bad: BadQueue,
+    /// Scratch space for the cavity search.
+    cavity: Vec<u32>,
+    cavity_stack: Vec<u32>,
     unsplittable: HashSet<(u32, u32)>,
     report: Report,
     /// Bad triangles and segments left alone because splitting them would make too short an edge.
@@ -165,7 +197,9 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
             floor2: floor * floor,
             steiner_limit: quality.max_steiner,
             encroached: VecDeque::new(),
-            bad: BinaryHeap::new(),
+            bad: BadQueue::new(),
+            cavity: Vec::new(),
+            cavity_stack: Vec::new(),
             unsplittable: HashSet::new(),
             report: Report::default(),
             skipped: 0,
@@ -441,27 +475,28 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         let [a, b, c] = mesh.triangle(t);
         let [pa, pb, pc] = [a, b, c].map(|v| mesh.point(v));
         let area = 0.5 * P::orient2d(pa, pb, pc);
-        let mut badness: Option<f64> = None;
+        let mut bucket: Option<usize> = None;
         // Angle: the smallest angle is opposite the shortest edge (Triangle's test, with cos²).
         if self.cos2_min_angle <= 1.0 {
             let sq = |p: Point, q: Point| (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2);
             let (lab, lbc, lca) = (sq(pa, pb), sq(pb, pc), sq(pc, pa));
             // Apex of the shortest edge and the squared lengths of its two other edges.
-            let (apex, p, q, l1, l2) = if lab <= lbc && lab <= lca {
-                (c, pa, pb, lca, lbc)
+            let (apex, (u, p), (v, q), l1, l2) = if lab <= lbc && lab <= lca {
+                (c, (a, pa), (b, pb), lca, lbc)
             } else if lbc <= lca {
-                (a, pb, pc, lab, lca)
+                (a, (b, pb), (c, pc), lab, lca)
             } else {
-                (b, pc, pa, lbc, lab)
+                (b, (c, pc), (a, pa), lbc, lab)
             };
             let o = mesh.point(apex);
             let dot = (p[0] - o[0]) * (q[0] - o[0]) + (p[1] - o[1]) * (q[1] - o[1]);
             let cos2 = if dot > 0.0 { dot * dot / (l1 * l2) } else { 0.0 };
-            if cos2 > self.cos2_min_angle && !self.is_forced_by_input(apex, p, q) {
-                badness = Some(1.0 + cos2);
+            if cos2 > self.cos2_min_angle && !self.is_forced_by_input(u, v) {
+                let worse = (cos2 - self.cos2_min_angle) / (1.0 - self.cos2_min_angle).max(f64::MIN_POSITIVE);
+                bucket = Some(1 + ((worse * (ANGLE_BUCKETS - 1) as f64) as usize).min(ANGLE_BUCKETS - 1));
             }
         }
-        if badness.is_none() {
+        if bucket.is_none() {
             let regional = if self.quality.variable_area {
                 self.domain.max_area.get(mesh.tag[t as usize] as usize).copied().unwrap_or(-1.0)
             } else {
@@ -472,39 +507,52 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
                 self.quality.user_test.is_some_and(|f| f(pa[0], pa[1], pb[0], pb[1], pc[0], pc[1], area))
             };
             if too_big || unsuitable() {
-                badness = Some(area.min(0.5));
+                bucket = Some(0);
             }
         }
-        if let Some(badness) = badness {
-            self.bad.push(BadTriangle { badness, corners: [a, b, c] });
+        if let Some(bucket) = bucket {
+            self.bad.push(BadTriangle { bucket, corners: [a, b, c] });
         }
     }
 
-    /// A skinny triangle whose shortest edge joins two points on two segments meeting at its
-    /// apex, at equal distances from it, is forced by the small input angle: splitting it would
-    /// only cut the angle into more skinny triangles (Shewchuk 2002, §4).
-    fn is_forced_by_input(&self, apex: u32, p: Point, q: Point) -> bool {
-        let o = self.pt(apex);
-        let (dp, dq) = ((p[0] - o[0]).powi(2) + (p[1] - o[1]).powi(2), (q[0] - o[0]).powi(2) + (q[1] - o[1]).powi(2));
-        if dp > 1.002 * dq || dq > 1.002 * dp {
+    /// A skinny triangle whose shortest edge joins two vertices inserted on two segments that
+    /// meet at an input vertex, at equal distances from it, is forced by the small input angle
+    /// there (the concentric shells put them there): splitting it would only cut the angle into
+    /// more skinny triangles, so it is left alone (Shewchuk 2002, §4; Triangle does the same).
+    fn is_forced_by_input(&self, u: u32, v: u32) -> bool {
+        if self.kinds[u as usize] != VertexKind::OnSegment || self.kinds[v as usize] != VertexKind::OnSegment {
             return false;
         }
+        let (Some(su), Some(sv)) = (self.segment_through(u), self.segment_through(v)) else {
+            return false;
+        };
+        let (ends_u, ends_v) = (self.cdt.ends[su as usize], self.cdt.ends[sv as usize]);
+        if su == sv || ends_u.0 == NONE || ends_v.0 == NONE {
+            return false;
+        }
+        let Some(apex) = [ends_u.0, ends_u.1].into_iter().find(|&w| w == ends_v.0 || w == ends_v.1) else {
+            return false;
+        };
+        let o = self.pt(apex);
+        let (p, q) = (self.pt(u), self.pt(v));
+        let (dp, dq) = ((p[0] - o[0]).powi(2) + (p[1] - o[1]).powi(2), (q[0] - o[0]).powi(2) + (q[1] - o[1]).powi(2));
+        dp <= 1.002 * dq && dq <= 1.002 * dp
+    }
+
+    /// The id of a segment that vertex `v` lies on, if any.
+    fn segment_through(&self, v: u32) -> Option<u32> {
         let mesh = &self.cdt.inserter.mesh;
-        // Both other edges at the apex must be segments.
-        let start = mesh.vertex_edge[apex as usize];
+        let start = mesh.vertex_edge[v as usize];
         let mut e = start;
-        let mut hits = 0;
         loop {
-            let w = mesh.dest(e);
-            if w != GHOST && mesh.is_segment(e) && (mesh.point(w) == p || mesh.point(w) == q) {
-                hits += 1;
+            if mesh.is_segment(e) {
+                return Some(mesh.segment_of(e));
             }
             e = mesh.twin(prev(e));
             if e == start {
-                break;
+                return None;
             }
         }
-        hits == 2
     }
 
     /// The point where a bad triangle is split: its circumcentre, or Üngör's off-centre on the
@@ -664,14 +712,18 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
     /// The subsegments that `x` would encroach if inserted at `location`: those bounding the
     /// triangles whose circumcircles contain `x` (the Bowyer–Watson cavity, which does not cross
     /// segments), with `x` inside their diametral circles.
-    fn encroached_by(&self, x: Point, location: Location) -> Vec<(u32, u32, u32)> {
+    fn encroached_by(&mut self, x: Point, location: Location) -> Vec<(u32, u32, u32)> {
+        let mut stack = std::mem::take(&mut self.cavity_stack);
+        let mut seen = std::mem::take(&mut self.cavity);
+        stack.clear();
+        seen.clear();
         let mesh = &self.cdt.inserter.mesh;
-        let mut stack: Vec<u32> = match location {
-            Location::InTriangle(t) | Location::Outside(t) => vec![t],
-            Location::OnEdge(e) => vec![triangle_of(e), triangle_of(mesh.twin(e))],
-            Location::OnVertex(_) => vec![],
-        };
-        let mut seen: Vec<u32> = stack.clone();
+        match location {
+            Location::InTriangle(t) | Location::Outside(t) => stack.push(t),
+            Location::OnEdge(e) => stack.extend_from_slice(&[triangle_of(e), triangle_of(mesh.twin(e))]),
+            Location::OnVertex(_) => {}
+        }
+        seen.extend_from_slice(&stack);
         let mut found = Vec::new();
         while let Some(t) = stack.pop() {
             for e in 3 * t..3 * t + 3 {
@@ -693,6 +745,8 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
                 }
             }
         }
+        self.cavity_stack = stack;
+        self.cavity = seen;
         found
     }
 }
