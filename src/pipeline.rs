@@ -20,7 +20,6 @@ const BRIO_SEED: u64 = 0x7269_616E_676C_6521;
 /// Rejects the switches whose features have not landed yet, with a clear message.
 fn check_supported(options: &Options) -> Result<(), Error> {
     let unsupported = [
-        (options.split_segments, "The `s` switch (segment splitting)"),
         (options.weighted != 0, "The `w`/`W` switches (weighted triangulation)"),
     ];
     match unsupported.iter().find(|(on, _)| *on) {
@@ -130,6 +129,7 @@ fn run<P: Predicates>(
     let degenerate = meshed.mesh.triangle_count() == 0;
     if !degenerate && (options.pslg || options.convex_hull || options.quality() || options.refine) {
         let mut cdt = Constrainer::new(Inserter::<P>::new(std::mem::take(&mut meshed.mesh)));
+        cdt.split_segments = options.split_segments;
         if options.pslg {
             insert_segments(&mut cdt, input, &duplicate_of, base, &mut output.warnings);
         }

@@ -56,6 +56,9 @@ pub struct Constrainer<P: Predicates> {
     pub markers: Vec<i32>,
     /// The input endpoints of each segment id (`(NONE, NONE)` for the hull's segments).
     pub ends: Vec<(u32, u32)>,
+    /// `s`: recover segments by inserting midpoints (a conforming triangulation) instead of
+    /// flipping crossing edges away.
+    pub split_segments: bool,
 }
 
 impl<P: Predicates> Constrainer<P> {
@@ -63,7 +66,7 @@ impl<P: Predicates> Constrainer<P> {
     pub fn new(mut inserter: Inserter<P>) -> Self {
         inserter.mesh.track_vertex_edges();
         inserter.mesh.track_segments();
-        Constrainer { inserter, crossings: Vec::new(), markers: Vec::new(), ends: Vec::new() }
+        Constrainer { inserter, crossings: Vec::new(), markers: Vec::new(), ends: Vec::new(), split_segments: false }
     }
 
     fn pt(&self, v: u32) -> Point {
@@ -86,6 +89,9 @@ impl<P: Predicates> Constrainer<P> {
     /// [`Self::new_segment_id`]). Both must be vertices of the triangulation.
     pub fn insert_segment(&mut self, a: u32, b: u32, id: u32) {
         let mut work = vec![(a, b, id)];
+        // `s` splits a segment at midpoints until its pieces are edges; a piece that would need
+        // more splits than this (it grazes a vertex) is recovered by flips instead.
+        let mut midpoints_left = 64u32;
         while let Some((a, b, id)) = work.pop() {
             if a == b {
                 continue;
@@ -103,29 +109,83 @@ impl<P: Predicates> Constrainer<P> {
                     work.push((c, b, id));
                 }
                 Walk::Crosses(crossed, stop) => {
-                    self.remove_crossings(a, stop, crossed, id);
                     work.push((stop, b, id));
-                }
-                Walk::HitsSegment(e) => match self.split_at_crossing(a, b, e) {
-                    CrossingPoint::New(p) | CrossingPoint::Existing(p) => {
-                        // The two pieces bend slightly at the rounded crossing point.
-                        work.push((p, b, id));
-                        work.push((a, p, id));
+                    let split = self.split_segments && midpoints_left > 0;
+                    match split.then(|| self.insert_midpoint(a, stop)).flatten() {
+                        Some(m) => {
+                            midpoints_left -= 1;
+                            work.push((m, stop, id));
+                            work.push((a, m, id));
+                        }
+                        None => self.remove_crossings(a, stop, crossed, id),
                     }
-                    CrossingPoint::ThroughVertex(w) => {
-                        // The crossed segment passes through `w` (in floating point): it is
-                        // re-inserted as two pieces meeting at `w`, then this one is retried.
-                        let mesh = &mut self.inserter.mesh;
-                        let (u, v, other) = (mesh.origin(e), mesh.dest(e), mesh.segment_of(e));
-                        mesh.clear_segment(e);
-                        self.restore_delaunay(vec![(u, v)]);
-                        work.push((a, b, id));
-                        work.push((w, v, other));
-                        work.push((u, w, other));
+                }
+                Walk::HitsSegment(e) => {
+                    // Read the crossed segment now: making the crossing vertex may rewrite `e`.
+                    let mesh = &self.inserter.mesh;
+                    let (u, v, other) = (mesh.origin(e), mesh.dest(e), mesh.segment_of(e));
+                    match self.split_at_crossing(a, b, e) {
+                        CrossingPoint::New(p) | CrossingPoint::Existing(p) => {
+                            // The two pieces bend slightly at the rounded crossing point.
+                            work.push((p, b, id));
+                            work.push((a, p, id));
+                        }
+                        CrossingPoint::ThroughVertex(w) => {
+                            // The crossed segment passes through `w` (in floating point): it is
+                            // re-inserted as two pieces meeting at `w`, then this one is retried.
+                            if let Some(crossed) = self.inserter.mesh.find_edge(u, v) {
+                                self.inserter.mesh.clear_segment(crossed);
+                                self.restore_delaunay(vec![(u, v)]);
+                            }
+                            work.push((a, b, id));
+                            work.push((w, v, other));
+                            work.push((u, w, other));
+                        }
                     }
                 },
             }
         }
+    }
+
+    /// After inserting a vertex at a rounded position (a crossing, a midpoint), which may lie
+    /// off the edge it split by an ulp: the edges around it are made locally Delaunay too (Lawson
+    /// checks only the edges opposite a new vertex, which suffices only for exact positions).
+    pub fn settle(&mut self, vertex: u32) {
+        let mesh = &self.inserter.mesh;
+        let start = mesh.vertex_edge[vertex as usize];
+        let mut e = start;
+        let mut edges = Vec::new();
+        loop {
+            let w = mesh.dest(e);
+            if w != GHOST {
+                edges.push((vertex, w));
+            }
+            e = mesh.twin(prev(e));
+            if e == start {
+                break;
+            }
+        }
+        self.restore_delaunay(edges);
+    }
+
+    /// `s`: inserts the midpoint of `a`–`b` as a vertex (recorded with the crossings, for its
+    /// attributes); `None` when it cannot be told apart from the ends.
+    fn insert_midpoint(&mut self, a: u32, b: u32) -> Option<u32> {
+        let (pa, pb) = (self.pt(a), self.pt(b));
+        let m = [0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])];
+        if m == pa || m == pb {
+            return None;
+        }
+        let start = triangle_of(self.inserter.mesh.vertex_edge[a as usize]);
+        let location = self.inserter.locate(m, start);
+        if let Location::OnVertex(_) = location {
+            return None;
+        }
+        let vertex = self.inserter.mesh.add_point(m);
+        let _ = self.inserter.insert_at(vertex, location);
+        self.settle(vertex);
+        self.crossings.push(Crossing { vertex, from: a, to: b, t: 0.5 });
+        Some(vertex)
     }
 
     /// Walks from `a` toward `b`.
@@ -214,6 +274,7 @@ impl<P: Predicates> Constrainer<P> {
                 location => {
                     let vertex = self.inserter.mesh.add_point(p);
                     let _ = self.inserter.insert_at(vertex, location);
+                    self.settle(vertex);
                     self.crossings.push(Crossing { vertex, from: u, to: v, t });
                     CrossingPoint::ThroughVertex(vertex)
                 }
@@ -221,6 +282,7 @@ impl<P: Predicates> Constrainer<P> {
         }
         let vertex = self.inserter.mesh.add_point(p);
         let _ = self.inserter.insert_at(vertex, Location::OnEdge(e));
+        self.settle(vertex);
         self.crossings.push(Crossing { vertex, from: u, to: v, t });
         CrossingPoint::New(vertex)
     }
@@ -330,7 +392,8 @@ mod tests {
     /// Delaunay.
     #[test]
     fn random_segments_are_recovered() {
-        for seed in 0..3000u64 {
+        let seeds: Vec<u64> = match std::env::var("SEED") { Ok(s) => vec![s.parse().unwrap()], Err(_) => (0..3000).collect() };
+        for seed in seeds.into_iter().take(1500) {
             let mut s = seed;
             let n = 5 + (splitmix64(&mut s) % 40) as usize;
             let pts: Vec<Point> = (0..n).map(|_| [rand01(&mut s), rand01(&mut s)]).collect();
@@ -340,6 +403,8 @@ mod tests {
                 continue;
             }
             let mut cdt = Constrainer::new(Inserter::<Exact>::new(tri.mesh));
+            // Every other seed recovers segments by splitting (`s`).
+            cdt.split_segments = seed % 2 == 1;
             for k in 0..10 {
                 let a = (splitmix64(&mut s) % n as u64) as u32;
                 let b = (splitmix64(&mut s) % n as u64) as u32;

@@ -425,6 +425,7 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
             attrs[u as usize * i.1 + i.0] + t * (attrs[v as usize * i.1 + i.0] - attrs[u as usize * i.1 + i.0])
         });
         let _ = self.cdt.inserter.insert_at(vertex, Location::OnEdge(e));
+        self.cdt.settle(vertex);
         self.after_insertion(vertex);
     }
 
