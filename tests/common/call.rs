@@ -319,6 +319,17 @@ pub fn run_call(
     Ok(result)
 }
 
+/// The result of one of our calls that returned `rc`: `Err` with `triangulate_last_error()` (to
+/// be read on the calling thread, right after the call) unless `rc` is 0.
+pub fn ours_status(rc: c_int) -> Result<(), String> {
+    if rc == 0 {
+        return Ok(());
+    }
+    // SAFETY: the library returns a valid NUL-terminated string.
+    let message = unsafe { std::ffi::CStr::from_ptr(triangle_rs::ffi::triangulate_last_error()) };
+    Err(message.to_string_lossy().into_owned())
+}
+
 /// Our `triangulate` through its C ABI (the exported function, not the Rust engine API).
 pub fn ours(switches: &str, input: &MeshInput) -> Result<Triangulation, String> {
     ours_with(switches, input, true)
@@ -332,15 +343,7 @@ pub fn ours_with(
 ) -> Result<Triangulation, String> {
     let call = |s: *mut c_char, i, o, v| {
         // SAFETY: valid, NUL-terminated switches and structs prepared by `run_call`.
-        let rc = unsafe { triangle_rs::ffi::triangulate(s, i, o, v) };
-        if rc == 0 {
-            Ok(())
-        } else {
-            // SAFETY: the library returns a valid NUL-terminated string.
-            let message =
-                unsafe { std::ffi::CStr::from_ptr(triangle_rs::ffi::triangulate_last_error()) };
-            Err(message.to_string_lossy().into_owned())
-        }
+        ours_status(unsafe { triangle_rs::ffi::triangulate(s, i, o, v) })
     };
     // SAFETY: arrays returned by our `triangulate` are freed with our `trifree`.
     let free = |p: *mut c_void| unsafe { triangle_rs::ffi::trifree(p) };

@@ -8,6 +8,7 @@ pub mod checks;
 pub mod points;
 pub mod pslg;
 pub mod pslg_checks;
+pub mod quality;
 pub mod reference;
 pub mod rng;
 pub mod timing;

@@ -1,6 +1,14 @@
-//! Timing helpers of the benchmarks: process CPU time, medians, command-line sizes.
+//! Timing helpers of the benchmarks: process CPU time, medians, command-line sizes, and timed,
+//! interleaved calls of our C ABI and Debian's Triangle on the same input.
 
-use std::time::Duration;
+use std::cell::Cell;
+use std::os::raw::{c_char, c_void};
+use std::time::{Duration, Instant};
+
+use super::call::{ours_status, run_call, MeshInput, RawCall, Triangulation};
+use super::checks::canonical_triangle;
+use super::reference::Reference;
+use triangle_rs::io::triangulateio::TriangulateIO;
 
 /// CPU time of the whole process (all threads).
 pub fn cpu_time() -> Duration {
@@ -46,4 +54,153 @@ pub fn number_from_env(name: &str, default: usize) -> usize {
         .ok()
         .and_then(|v| v.replace('_', "").parse().ok())
         .unwrap_or(default)
+}
+
+/// True under `cargo bench`, which passes `--bench`. `cargo test --all-targets` runs the
+/// benchmark binaries without it: they then make only a small smoke run (same code path, same
+/// checks).
+pub fn benchmarking() -> bool {
+    std::env::args().any(|a| a == "--bench")
+}
+
+/// Wall-clock and process CPU time of one run.
+#[derive(Clone, Copy, Debug)]
+pub struct Times {
+    pub wall: Duration,
+    pub cpu: Duration,
+}
+
+impl Times {
+    /// Runs `run` and measures it.
+    pub fn measure<T>(run: impl FnOnce() -> T) -> (Times, T) {
+        let (wall, cpu) = (Instant::now(), cpu_time());
+        let result = run();
+        let times = Times {
+            wall: wall.elapsed(),
+            cpu: cpu_time() - cpu,
+        };
+        (times, result)
+    }
+
+    /// The median wall-clock time and the median CPU time (each taken on its own); `samples`
+    /// must not be empty.
+    pub fn median(samples: &[Times]) -> Times {
+        Times {
+            wall: median(samples.iter().map(|t| t.wall).collect()),
+            cpu: median(samples.iter().map(|t| t.cpu).collect()),
+        }
+    }
+
+    /// `wall … (median), cpu …`.
+    fn describe(&self) -> String {
+        format!(
+            "wall {} (median), cpu {}",
+            seconds(self.wall),
+            seconds(self.cpu)
+        )
+    }
+}
+
+/// One implementation of Triangle's C ABI.
+#[derive(Clone, Copy)]
+pub enum Library {
+    /// Ours: the exported `triangle_rs::ffi::triangulate`.
+    Ours,
+    /// Debian's Triangle 1.6 (only pass it input it accepts: it exits the process otherwise).
+    Triangle(&'static Reference),
+}
+
+/// One call of `library`'s `triangulate` on `input`, timed around the C call alone (not the
+/// copies of the input and output arrays); panics if the call fails.
+pub fn timed_call(library: Library, switches: &str, input: &MeshInput) -> (Times, Triangulation) {
+    let (call, free): (Box<RawCall<'_>>, Box<dyn Fn(*mut c_void)>) = match library {
+        Library::Ours => (
+            // SAFETY: valid switches and structs prepared by `run_call`.
+            Box::new(|s, i, o, v| ours_status(unsafe { triangle_rs::ffi::triangulate(s, i, o, v) })),
+            // SAFETY: arrays returned by our `triangulate` are freed with our `trifree`.
+            Box::new(|p| unsafe { triangle_rs::ffi::trifree(p) }),
+        ),
+        Library::Triangle(reference) => (
+            Box::new(|s, i, o, v| {
+                // SAFETY: valid switches and structs prepared by `run_call`; input Triangle
+                // accepts (the caller's duty).
+                unsafe { reference.triangulate_raw(s, i, o, v) };
+                Ok(())
+            }),
+            // SAFETY: arrays from Triangle are freed with its trifree.
+            Box::new(|p| unsafe { reference.trifree(p) }),
+        ),
+    };
+    let times = Cell::new(None);
+    let timed = |s: *mut c_char, i: *mut TriangulateIO, o: *mut TriangulateIO, v: *mut TriangulateIO| {
+        let (t, result) = Times::measure(|| call(s, i, o, v));
+        times.set(Some(t));
+        result
+    };
+    let output = run_call(&timed, &*free, switches, input, false)
+        .unwrap_or_else(|message| panic!("triangulate failed: {message}"));
+    (times.get().expect("run_call made the call"), output)
+}
+
+/// The triangles of `mesh`, each rotated to start at its smallest corner, sorted: equal for two
+/// outputs exactly when they have the same triangles, whatever their order.
+fn sorted_triangles(mesh: &Triangulation) -> Vec<[i32; 3]> {
+    let mut triangles: Vec<[i32; 3]> = mesh
+        .triangle_triples()
+        .into_iter()
+        .map(canonical_triangle)
+        .collect();
+    triangles.sort_unstable();
+    triangles
+}
+
+/// Calls ours and, if `triangle` is given, Triangle alternately on `input` (ours, Triangle,
+/// ours, …), `reps` times each; prints the median times (each line starting with `indent`),
+/// the speed-up, and checks that both give the same triangles. Returns our median times and
+/// our last output.
+pub fn compare_interleaved(
+    switches: &str,
+    input: &MeshInput,
+    reps: usize,
+    triangle: Option<&'static Reference>,
+    indent: &str,
+) -> (Times, Triangulation) {
+    let (mut ours_times, mut theirs_times) = (Vec::new(), Vec::new());
+    let (mut ours_mesh, mut theirs_mesh) = (None, None);
+    for _ in 0..reps.max(1) {
+        let (times, mesh) = timed_call(Library::Ours, switches, input);
+        ours_times.push(times);
+        ours_mesh = Some(mesh);
+        if let Some(reference) = triangle {
+            let (times, mesh) = timed_call(Library::Triangle(reference), switches, input);
+            theirs_times.push(times);
+            theirs_mesh = Some(mesh);
+        }
+    }
+    let ours = Times::median(&ours_times);
+    let ours_mesh = ours_mesh.expect("at least one repetition");
+    println!("{indent}triangle-rs:  {}", ours.describe());
+    let Some(theirs_mesh) = theirs_mesh else {
+        return (ours, ours_mesh);
+    };
+    let theirs = Times::median(&theirs_times);
+    println!("{indent}Triangle 1.6: {}", theirs.describe());
+    println!(
+        "{indent}speed-up:     {:.2}× wall, {:.2}× cpu (Triangle's time / ours)",
+        theirs.wall.as_secs_f64() / ours.wall.as_secs_f64(),
+        theirs.cpu.as_secs_f64() / ours.cpu.as_secs_f64()
+    );
+    let (ours_triangles, theirs_triangles) =
+        (sorted_triangles(&ours_mesh), sorted_triangles(&theirs_mesh));
+    assert!(
+        ours_triangles == theirs_triangles,
+        "the triangle sets differ: {} triangles (ours) vs {} (Triangle's)",
+        ours_triangles.len(),
+        theirs_triangles.len()
+    );
+    println!(
+        "{indent}triangle sets identical ({} triangles)",
+        ours_triangles.len()
+    );
+    (ours, ours_mesh)
 }
