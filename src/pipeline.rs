@@ -156,6 +156,14 @@ fn run<P: Predicates>(
             Domain::whole(&mut cdt.inserter.mesh)
         };
         if options.quality() {
+            if options.pslg && !options.refine {
+                // Refinement works inside the domain only: the eaten triangles go, and ghosts
+                // cover the domain's boundary (made of segments), as after `r`. Left in place,
+                // slivers outside could not be split with a boundary segment without inverting.
+                let tag = std::mem::take(&mut cdt.inserter.mesh.tag);
+                cdt.inserter.mesh.tag = tag.clone();
+                cdt.inserter.retain_triangles(|t| tag[t as usize] != OUTSIDE);
+            }
             let quality = Quality {
                 min_angle: options.min_angle,
                 max_area: options.max_area,

@@ -9,7 +9,7 @@ use std::collections::HashMap;
 
 use crate::error::Error;
 use crate::geometry::{Point, Predicates};
-use crate::mesh::{prev, triangle_of, Mesh, GHOST, NONE};
+use crate::mesh::Mesh;
 
 /// Builds the mesh of the given triangles (`corners` indices per triangle, the first three used,
 /// numbered from `base`). Triangle `i` of the input becomes triangle `i` of the mesh (turned
@@ -53,34 +53,7 @@ pub fn reconstruct<P: Predicates>(points: Vec<Point>, triangles: &[i32], corners
             mesh.twins[e as usize] = f;
         }
     }
-    // A ghost (w, v, ∞) for each boundary half-edge v → w.
-    let boundary: Vec<u32> = (0..3 * count as u32).filter(|&e| mesh.twin(e) == NONE).collect();
-    for &h in &boundary {
-        let g = mesh.add_triangle(mesh.dest(h), mesh.origin(h), GHOST);
-        mesh.twins[h as usize] = 3 * g;
-        mesh.twins[3 * g as usize] = h;
-    }
-    // Around boundary vertex v, turn counter-clockwise from the boundary edge leaving v (h) to
-    // the boundary edge entering v in the same part of the mesh; their ghosts share v–∞.
-    for &h in &boundary {
-        let v = mesh.origin(h);
-        let mut e = h;
-        let entering = loop {
-            let p = prev(e);
-            let f = mesh.twin(p);
-            if mesh.is_ghost(triangle_of(f)) {
-                break f;
-            }
-            e = f;
-        };
-        let g = triangle_of(mesh.twin(h));
-        let ghost_prev = triangle_of(entering);
-        // Ghost of h: (w, v, ∞) with slot 1 = v → ∞; ghost of the entering edge x → v:
-        // (v, x, ∞) with slot 2 = ∞ → v.
-        debug_assert_eq!(mesh.corners[3 * ghost_prev as usize], v);
-        mesh.twins[(3 * g + 1) as usize] = 3 * ghost_prev + 2;
-        mesh.twins[(3 * ghost_prev + 2) as usize] = 3 * g + 1;
-    }
+    mesh.cover_boundary_with_ghosts();
     Ok(mesh)
 }
 

@@ -67,13 +67,17 @@ pub enum VertexKind {
 /// A queued bad triangle: its corners (it may be gone by the time it is taken out).
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct BadTriangle {
-    /// Queue bucket: larger is worse.
+    /// Queue bucket: higher goes first.
     bucket: usize,
     corners: [u32; 3],
 }
 
-/// Bad triangles, worst first, in buckets by how bad they are (a bucket queue: constant time per
-/// operation, where a binary heap of millions of triangles costs a cache miss per level).
+/// Bad triangles in buckets by the length of their shortest edge, shortest first (a bucket
+/// queue: constant time per operation, where a binary heap of millions of triangles costs a
+/// cache miss per level). Splitting the small triangles first settles the fine parts of the mesh
+/// (near small features and small input angles) before the coarse triangles around them are
+/// split, so that fewer coarse splits are made that later refinement would have made anyway;
+/// measured, it gives fewer vertices than worst-angle-first or FIFO order.
 #[derive(Default)]
 struct BadQueue {
     buckets: Vec<VecDeque<[u32; 3]>>,
@@ -81,13 +85,22 @@ struct BadQueue {
     top: usize,
 }
 
-/// Buckets for triangles that are bad by their angle (finer toward the worst); one more, the
-/// lowest, for those bad only by area or the user's test.
-const ANGLE_BUCKETS: usize = 64;
+/// One bucket per halving of the squared shortest edge relative to the domain's extent: the
+/// precision floor (2⁻⁴⁰ of the extent) is reached at bucket 80.
+const EDGE_BUCKETS: usize = 96;
 
 impl BadQueue {
     fn new() -> Self {
-        BadQueue { buckets: (0..=ANGLE_BUCKETS).map(|_| VecDeque::new()).collect(), top: 0 }
+        BadQueue { buckets: (0..EDGE_BUCKETS).map(|_| VecDeque::new()).collect(), top: 0 }
+    }
+    /// The bucket of a triangle whose shortest edge, squared, is `relative` times the domain's
+    /// extent squared.
+    fn bucket_of(&self, relative: f64) -> usize {
+        if relative >= 1.0 {
+            0
+        } else {
+            ((-relative.log2()) as usize).min(EDGE_BUCKETS - 1)
+        }
     }
     fn push(&mut self, bad: BadTriangle) {
         self.buckets[bad.bucket].push_back(bad.corners);
@@ -148,6 +161,8 @@ pub struct Refiner<'r, 'q, P: Predicates> {
     off_center: f64,
     /// No edge is made shorter than this (squared): far above the resolution of doubles here.
     floor2: f64,
+    /// The domain's extent, squared (the scale of the bad-triangle queue).
+    extent2: f64,
     /// Subsegments to split: ends, and whether a rejected point encroached it (split regardless).
     encroached: VecDeque<(u32, u32, bool)>,
     /// Where refinement stops (the `S` budget, or the budget beyond the guaranteed angle).
@@ -195,6 +210,7 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
             conforming,
             off_center: f64::INFINITY,
             floor2: floor * floor,
+            extent2: extent * extent,
             steiner_limit: quality.max_steiner,
             encroached: VecDeque::new(),
             bad: BadQueue::new(),
@@ -346,52 +362,41 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         }
     }
 
-    fn split_encroached(&mut self) {
+    /// Splits the queued subsegments that are still encroached (or were queued `forced`);
+    /// returns how many it split.
+    fn split_encroached(&mut self) -> usize {
+        let mut splits = 0;
         while let Some((u, v, forced)) = self.encroached.pop_front() {
             if self.should_stop() {
                 self.encroached.clear();
-                return;
+                break;
             }
             let mesh = &self.cdt.inserter.mesh;
-            let Some(e) = mesh.find_edge(u, v) else { continue };
-            if !mesh.is_segment(e) {
-                continue;
-            }
+            let Some(e) = mesh.find_edge(u, v).filter(|&e| mesh.is_segment(e)) else { continue };
             let still = [e, mesh.twin(e)].iter().any(|&h| {
                 let w = mesh.apex(h);
                 w != GHOST && self.inside(triangle_of(h)) && self.encroaches(u, v, mesh.point(w))
             });
-            if forced || still {
-                self.split_segment(e);
+            if (forced || still) && self.split_segment(e) {
+                splits += 1;
             }
         }
+        splits
     }
 
-    /// Where to split subsegment `u`–`v` (parameter from `u`): the midpoint, or a power-of-two
-    /// distance from an end that is an input vertex shared with another segment.
+    /// Where to split subsegment `u`–`v` (parameter from `u`): at a power-of-two distance from
+    /// an end that is an input vertex where segments meet at an acute angle ("concentric shells",
+    /// Ruppert 1995 §5, Shewchuk 2002 §4.1), from the sharper one if both are; else the midpoint.
     fn split_parameter(&self, u: u32, v: u32) -> f64 {
-        let shared = |x: u32| {
-            if self.kinds[x as usize] == VertexKind::OnSegment {
-                return false;
-            }
-            let mesh = &self.cdt.inserter.mesh;
-            let start = mesh.vertex_edge[x as usize];
-            let (mut e, mut count) = (start, 0);
-            loop {
-                if mesh.is_segment(e) {
-                    count += 1;
-                }
-                e = mesh.twin(prev(e));
-                if e == start {
-                    break;
-                }
-            }
-            count >= 2
-        };
-        let (su, sv) = (shared(u), shared(v));
-        if su == sv {
+        let (cu, cv) = (self.sharpest_corner(u), self.sharpest_corner(v));
+        if cu.is_none() && cv.is_none() {
             return 0.5;
         }
+        let from_u = match (cu, cv) {
+            (Some(a), Some(b)) => a >= b,
+            (Some(_), None) => true,
+            _ => false,
+        };
         let (pu, pv) = (self.pt(u), self.pt(v));
         let length = ((pv[0] - pu[0]).powi(2) + (pv[1] - pu[1]).powi(2)).sqrt();
         let mut d = 2f64.powi(length.log2().round() as i32);
@@ -401,25 +406,81 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         while d < length / 3.0 {
             d *= 2.0;
         }
-        if su {
+        if from_u {
             d / length
         } else {
             1.0 - d / length
         }
     }
 
-    /// Splits the subsegment of half-edge `e`, unless that makes an edge shorter than the floor.
-    fn split_segment(&mut self, e: u32) {
+    /// For an input vertex `x` where two segments meet at less than 90°: the cosine of the
+    /// smallest such angle (larger is sharper). `None` for vertices inserted by refinement and
+    /// for vertices whose segments meet at right or obtuse angles only. The smallest angle is
+    /// between two segments consecutive around `x`, so one turn around it suffices.
+    fn sharpest_corner(&self, x: u32) -> Option<f64> {
+        if self.kinds[x as usize] == VertexKind::OnSegment {
+            return None;
+        }
+        let mesh = &self.cdt.inserter.mesh;
+        let o = mesh.point(x);
+        let direction = |e: u32| {
+            let p = mesh.point(mesh.dest(e));
+            let d = [p[0] - o[0], p[1] - o[1]];
+            let length = (d[0] * d[0] + d[1] * d[1]).sqrt();
+            [d[0] / length, d[1] / length]
+        };
+        let start = mesh.vertex_edge[x as usize];
+        let (mut e, mut first, mut previous): (u32, Option<Point>, Option<Point>) = (start, None, None);
+        let mut sharpest: Option<f64> = None;
+        let mut consider = |a: Point, b: Point| {
+            let cos = a[0] * b[0] + a[1] * b[1];
+            if cos > 0.0 && sharpest.is_none_or(|s| cos > s) {
+                sharpest = Some(cos);
+            }
+        };
+        loop {
+            if mesh.is_segment(e) {
+                let d = direction(e);
+                match previous {
+                    Some(p) => consider(p, d),
+                    None => first = Some(d),
+                }
+                previous = Some(d);
+            }
+            e = mesh.twin(prev(e));
+            if e == start {
+                break;
+            }
+        }
+        if let (Some(a), Some(b)) = (first, previous) {
+            if a != b {
+                consider(b, a);
+            }
+        }
+        sharpest
+    }
+
+    /// Splits the subsegment of half-edge `e`; returns whether it did. It does not when the
+    /// pieces would be shorter than the floor, or when the rounded split point would fall on or
+    /// beyond the line from an end to a vertex beside the subsegment (a vertex within rounding
+    /// distance of it): the triangles made would be inverted. Such a subsegment is never tried
+    /// again.
+    fn split_segment(&mut self, e: u32) -> bool {
         let mesh = &self.cdt.inserter.mesh;
         let (u, v) = (mesh.origin(e), mesh.dest(e));
         let t = self.split_parameter(u, v);
         let (pu, pv) = (self.pt(u), self.pt(v));
         let p = [pu[0] + t * (pv[0] - pu[0]), pu[1] + t * (pv[1] - pu[1])];
         let too_short = |q: Point, r: Point| (q[0] - r[0]).powi(2) + (q[1] - r[1]).powi(2) < self.floor2;
-        if too_short(p, pu) || too_short(p, pv) || p == pu || p == pv {
+        let splits_cleanly = [e, mesh.twin(e)].iter().all(|&h| {
+            let w = mesh.apex(h);
+            let (a, b) = (mesh.point(mesh.origin(h)), mesh.point(mesh.dest(h)));
+            w == GHOST || (P::orient2d(a, p, mesh.point(w)) > 0.0 && P::orient2d(p, b, mesh.point(w)) > 0.0)
+        });
+        if too_short(p, pu) || too_short(p, pv) || !splits_cleanly {
             self.unsplittable.insert((u.min(v), u.max(v)));
             self.skipped += 1;
-            return;
+            return false;
         }
         let vertex = self.new_vertex(p, VertexKind::OnSegment, |attrs, i| {
             attrs[u as usize * i.1 + i.0] + t * (attrs[v as usize * i.1 + i.0] - attrs[u as usize * i.1 + i.0])
@@ -427,6 +488,7 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         let _ = self.cdt.inserter.insert_at(vertex, Location::OnEdge(e));
         self.cdt.settle(vertex);
         self.after_insertion(vertex);
+        true
     }
 
     /// Adds vertex `p` with attributes `attribute(attrs, (i, k))`.
@@ -476,42 +538,35 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         let [a, b, c] = mesh.triangle(t);
         let [pa, pb, pc] = [a, b, c].map(|v| mesh.point(v));
         let area = 0.5 * P::orient2d(pa, pb, pc);
-        let mut bucket: Option<usize> = None;
-        // Angle: the smallest angle is opposite the shortest edge (Triangle's test, with cos²).
-        if self.cos2_min_angle <= 1.0 {
-            let sq = |p: Point, q: Point| (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2);
-            let (lab, lbc, lca) = (sq(pa, pb), sq(pb, pc), sq(pc, pa));
-            // Apex of the shortest edge and the squared lengths of its two other edges.
-            let (apex, (u, p), (v, q), l1, l2) = if lab <= lbc && lab <= lca {
-                (c, (a, pa), (b, pb), lca, lbc)
-            } else if lbc <= lca {
-                (a, (b, pb), (c, pc), lab, lca)
-            } else {
-                (b, (c, pc), (a, pa), lbc, lab)
-            };
-            let o = mesh.point(apex);
+        let sq = |p: Point, q: Point| (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2);
+        let (lab, lbc, lca) = (sq(pa, pb), sq(pb, pc), sq(pc, pa));
+        // The shortest edge (u, v), its opposite corner, and the squared lengths of the others.
+        let (apex, u, v, l1, l2) = if lab <= lbc && lab <= lca {
+            (c, a, b, lca, lbc)
+        } else if lbc <= lca {
+            (a, b, c, lab, lca)
+        } else {
+            (b, c, a, lbc, lab)
+        };
+        let shortest = lab.min(lbc).min(lca);
+        // Angle: the smallest angle is the one opposite the shortest edge; compared through cos².
+        let skinny = self.cos2_min_angle <= 1.0 && {
+            let (o, p, q) = (mesh.point(apex), mesh.point(u), mesh.point(v));
             let dot = (p[0] - o[0]) * (q[0] - o[0]) + (p[1] - o[1]) * (q[1] - o[1]);
             let cos2 = if dot > 0.0 { dot * dot / (l1 * l2) } else { 0.0 };
-            if cos2 > self.cos2_min_angle && !self.is_forced_by_input(u, v) {
-                let worse = (cos2 - self.cos2_min_angle) / (1.0 - self.cos2_min_angle).max(f64::MIN_POSITIVE);
-                bucket = Some(1 + ((worse * (ANGLE_BUCKETS - 1) as f64) as usize).min(ANGLE_BUCKETS - 1));
-            }
-        }
-        if bucket.is_none() {
+            cos2 > self.cos2_min_angle && !self.is_forced_by_input(u, v)
+        };
+        let bad = skinny || {
             let regional = if self.quality.variable_area {
                 self.domain.max_area.get(mesh.tag[t as usize] as usize).copied().unwrap_or(-1.0)
             } else {
                 -1.0
             };
             let too_big = self.quality.max_area.is_some_and(|m| area > m) || (regional > 0.0 && area > regional);
-            let unsuitable = || {
-                self.quality.user_test.is_some_and(|f| f(pa[0], pa[1], pb[0], pb[1], pc[0], pc[1], area))
-            };
-            if too_big || unsuitable() {
-                bucket = Some(0);
-            }
-        }
-        if let Some(bucket) = bucket {
+            too_big || self.quality.user_test.is_some_and(|f| f(pa[0], pa[1], pb[0], pb[1], pc[0], pc[1], area))
+        };
+        if bad {
+            let bucket = self.bad.bucket_of(shortest / self.extent2);
             self.bad.push(BadTriangle { bucket, corners: [a, b, c] });
         }
     }
@@ -598,33 +653,21 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         match self.walk(t, x) {
             Walk::Lost => {}
             Walk::Blocked(s) => {
-                let mesh = &self.cdt.inserter.mesh;
-                let (u, v) = (mesh.origin(s), mesh.dest(s));
                 // A segment hides the new point from the triangle: the point may not be
                 // inserted, and the segment is split instead (Ruppert's rule; with lenses the
                 // point need not lie in its diametral circle).
-                if self.may_split(s) && !self.unsplittable.contains(&(u.min(v), u.max(v))) {
-                    self.encroached.push_back((u, v, true));
-                    self.bad.push(bad);
-                }
+                let mesh = &self.cdt.inserter.mesh;
+                let segment = (mesh.origin(s), mesh.dest(s), s);
+                self.split_instead(&[segment], bad);
             }
             Walk::Found(location) => {
                 if let Location::OnVertex(_) = location {
-                    return; // precision exhausted here
+                    self.skipped += 1; // precision exhausted here
+                    return;
                 }
                 let encroached = self.encroached_by(x, location);
                 if !encroached.is_empty() {
-                    let mut queued = false;
-                    for (u, v, e) in encroached {
-                        if self.may_split(e) && !self.unsplittable.contains(&(u.min(v), u.max(v))) {
-                            self.encroached.push_back((u, v, true));
-                            queued = true;
-                        }
-                    }
-                    if queued {
-                        // Reconsidered once the subsegments are split.
-                        self.bad.push(bad);
-                    }
+                    self.split_instead(&encroached, bad);
                     return;
                 }
                 if self.too_close(x, location) {
@@ -639,6 +682,23 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
                 let _ = self.cdt.inserter.insert_at(vertex, location);
                 self.after_insertion(vertex);
             }
+        }
+    }
+
+    /// Splits the given subsegments (`(origin, dest, half-edge)`) instead of a bad triangle whose
+    /// split point encroaches on them, and queues the triangle again to be reconsidered. Only if
+    /// some subsegment was split: otherwise the triangle is left as it is, so that every time a
+    /// triangle is queued again refinement has made progress.
+    fn split_instead(&mut self, subsegments: &[(u32, u32, u32)], bad: BadTriangle) {
+        for &(u, v, e) in subsegments {
+            if self.may_split(e) && !self.unsplittable.contains(&(u.min(v), u.max(v))) {
+                self.encroached.push_back((u, v, true));
+            }
+        }
+        if self.split_encroached() > 0 {
+            self.bad.push(bad);
+        } else {
+            self.skipped += 1;
         }
     }
 

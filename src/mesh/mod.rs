@@ -247,6 +247,85 @@ impl Mesh {
         self.corners[i + 2] = c;
     }
 
+    /// Covers the boundary of a mesh whose boundary half-edges have no twin yet ([`NONE`]) with
+    /// ghost triangles: one `(w, v, ∞)` per boundary half-edge `v → w`, each linked to its
+    /// neighbours around the boundary vertices. The boundary need not be convex, and may have
+    /// holes and vertices where two parts of the mesh touch: around boundary vertex `v`, turning
+    /// counter-clockwise inside the mesh from the boundary edge leaving `v` reaches the boundary
+    /// edge entering `v` in the same part, and their ghosts share `v–∞`. A ghost takes the
+    /// segment id of its boundary edge and the tag [`OUTSIDE`].
+    pub fn cover_boundary_with_ghosts(&mut self) {
+        let boundary: Vec<u32> = (0..self.corners.len() as u32).filter(|&e| self.twins[e as usize] == NONE).collect();
+        for &h in &boundary {
+            let g = self.add_triangle(self.dest(h), self.origin(h), GHOST);
+            self.link(h, 3 * g);
+        }
+        for &h in &boundary {
+            let mut e = h;
+            let entering = loop {
+                let f = self.twin(prev(e));
+                if self.is_ghost(triangle_of(f)) {
+                    break f;
+                }
+                e = f;
+            };
+            // Ghost of h: (w, v, ∞) with slot 1 = v → ∞; ghost of the entering edge x → v:
+            // (v, x, ∞) with slot 2 = ∞ → v.
+            let (g, ghost_prev) = (triangle_of(self.twin(h)), triangle_of(entering));
+            self.link(3 * g + 1, 3 * ghost_prev + 2);
+        }
+        if !self.segment.is_empty() {
+            self.segment.resize(self.corners.len(), NONE);
+            for &h in &boundary {
+                let ghost_edge = self.twin(h) as usize;
+                self.segment[ghost_edge] = self.segment[h as usize];
+            }
+        }
+        if !self.tag.is_empty() {
+            self.tag.resize(self.triangle_count() as usize, OUTSIDE);
+        }
+    }
+
+    /// Keeps only the real triangles for which `keep` holds (their order kept, renumbered from
+    /// 0) and covers the new boundary with ghosts. Segment ids, tags and vertex edges (where
+    /// tracked) follow; a vertex left in no triangle has no edge.
+    pub fn retain_triangles(&mut self, keep: impl Fn(u32) -> bool) {
+        let old = std::mem::take(self);
+        let mut new_index = vec![NONE; old.triangle_count() as usize];
+        let mut kept = 0u32;
+        for t in 0..old.triangle_count() {
+            if !old.is_ghost(t) && keep(t) {
+                new_index[t as usize] = kept;
+                kept += 1;
+            }
+        }
+        let tracks_segments = !old.segment.is_empty();
+        let tracks_tags = !old.tag.is_empty();
+        let mut mesh = Mesh { points: old.points.clone(), ..Mesh::default() };
+        for t in 0..old.triangle_count() {
+            if new_index[t as usize] == NONE {
+                continue;
+            }
+            mesh.corners.extend_from_slice(&old.corners[3 * t as usize..3 * t as usize + 3]);
+            for e in 3 * t..3 * t + 3 {
+                let f = old.twins[e as usize];
+                let u = new_index[triangle_of(f) as usize];
+                mesh.twins.push(if u == NONE { NONE } else { 3 * u + f % 3 });
+                if tracks_segments {
+                    mesh.segment.push(old.segment[e as usize]);
+                }
+            }
+            if tracks_tags {
+                mesh.tag.push(old.tag[t as usize]);
+            }
+        }
+        mesh.cover_boundary_with_ghosts();
+        if !old.vertex_edge.is_empty() {
+            mesh.track_vertex_edges();
+        }
+        *self = mesh;
+    }
+
     /// Starts a triangulation with the counter-clockwise triangle `(a, b, c)` and the three
     /// ghosts around it. Returns the real triangle.
     pub fn init_triangle(&mut self, a: u32, b: u32, c: u32) -> u32 {

@@ -82,6 +82,12 @@ impl<P: Predicates> Inserter<P> {
         t
     }
 
+    /// Keeps only the triangles for which `keep` holds (see [`Mesh::retain_triangles`]).
+    pub fn retain_triangles(&mut self, keep: impl Fn(u32) -> bool) {
+        self.mesh.retain_triangles(keep);
+        self.last = 0;
+    }
+
     /// A triangle near the last insertion: a good start for a walk.
     pub fn last_triangle(&self) -> u32 {
         self.last
@@ -202,6 +208,7 @@ impl<P: Predicates> Inserter<P> {
 
     /// Inserts vertex `v` at a known location and restores the Delaunay property.
     pub fn insert_at(&mut self, v: u32, location: Location) -> Result<(), u32> {
+        let grows_hull = matches!(location, Location::Outside(_));
         match location {
             Location::OnVertex(u) => return Err(u),
             Location::InTriangle(t) | Location::Outside(t) => {
@@ -213,18 +220,25 @@ impl<P: Predicates> Inserter<P> {
                 self.stack.extend(ts.iter().map(|&t| 3 * t));
             }
         }
-        self.legalize(v);
+        self.legalize(v, grows_hull);
         Ok(())
     }
 
     /// Lawson's flip loop: every half-edge on the stack is opposite `v` in a triangle that
     /// contains `v`; flip it while `v` lies in the circumcircle of the triangle across it.
     /// Segments are never flipped (the result is then constrained Delaunay, Chew 1989).
-    fn legalize(&mut self, v: u32) {
+    ///
+    /// An edge between two ghosts is flipped only when `v` was inserted outside the hull
+    /// (`grows_hull`): that is how the hull grows around it. A vertex inserted inside or on the
+    /// boundary never lies strictly beyond a boundary edge in exact terms, except when the
+    /// boundary is not convex (a carved domain, a mesh given with `r`) or when the vertex was
+    /// rounded onto a boundary edge; flipping there would wrap a triangle around the outside.
+    fn legalize(&mut self, v: u32, grows_hull: bool) {
         let p = self.mesh.point(v);
         while let Some(e) = self.stack.pop() {
             let f = self.mesh.twin(e);
-            if !self.mesh.is_segment(e) && self.conflicts(triangle_of(f), p) {
+            let ghost_edge = self.mesh.origin(e) == GHOST || self.mesh.dest(e) == GHOST;
+            if !self.mesh.is_segment(e) && (grows_hull || !ghost_edge) && self.conflicts(triangle_of(f), p) {
                 let [t1, t2] = self.mesh.flip(e);
                 self.stack.push(3 * t1);
                 self.stack.push(3 * t2);
