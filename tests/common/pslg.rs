@@ -1,10 +1,11 @@
 //! Planar straight line graphs for the constrained Delaunay tests and benchmark: the classic
 //! shapes of tests/data/shapes/ (read with our `.poly` reader), seeded random PSLGs (polygons
 //! with holes and islands, crossing segments, vertices on segments, duplicates referenced by
-//! segments), and the random star-shaped polygon of benches/cdt.rs.
+//! segments), the random star-shaped polygon of benches/cdt.rs and benches/refine.rs, and the
+//! square with a circular hole of benches/refine.rs.
 //!
-//! A [`Pslg`] keeps its input zero-based; [`Pslg::input_for`] shifts the segment indices to the
-//! base the switches ask for. It also carries what its generator knows about the answer (the
+//! A [`Pslg`] keeps its input zero-based; [`Pslg::input_for`] shifts the segment (and triangle)
+//! indices to the base the switches ask for. It also carries what its generator knows about the answer (the
 //! meshed area, which region covers which point), for the property tests.
 
 use std::f64::consts::TAU;
@@ -57,12 +58,16 @@ impl Pslg {
         }
     }
 
-    /// The input with segment indices in the numbering of `switches` (0-based with `z`).
+    /// The input with segment (and, for `r`, triangle) indices in the numbering of `switches`
+    /// (0-based with `z`).
     pub fn input_for(&self, switches: &str) -> MeshInput {
         let base = i32::from(!switches.contains('z'));
         let mut input = self.input.clone();
         for s in &mut input.segments {
             *s = s.map(|v| v + base);
+        }
+        for v in &mut input.triangles {
+            *v += base;
         }
         input
     }
@@ -481,4 +486,77 @@ pub fn star_polygon(n: usize, seed: u64) -> (Vec<Point>, Vec<[i32; 2]>) {
         .collect();
     let segments = (0..n).map(|i| [i as i32, ((i + 1) % n) as i32]).collect();
     (points, segments)
+}
+
+/// [`star_polygon`] as a [`Pslg`] (zero-based), with its area.
+pub fn star_polygon_pslg(n: usize, seed: u64) -> Pslg {
+    let (points, segments) = star_polygon(n, seed);
+    let area = polygon_area(&points);
+    Pslg {
+        area: Some(area),
+        area_ignoring_holes: Some(area),
+        ..Pslg::new(
+            format!("star polygon of {n} vertices (seed {seed})"),
+            MeshInput {
+                segments,
+                ..MeshInput::from_points(points)
+            },
+        )
+    }
+}
+
+/// The refinement benchmark's domain: the unit square (segment marker 1) with a circular hole of
+/// centre (0.5, 0.5) and radius 0.2 (`circle_segments` segments, marker 2, a hole point at the
+/// centre) and four short free-standing segments between the circle and the corners (marker 3,
+/// placed a little asymmetrically, so that few vertices are cocircular).
+pub fn square_with_hole(circle_segments: usize) -> Pslg {
+    assert!(circle_segments >= 3, "a circle of at least three segments");
+    let (centre, radius) = ([0.5, 0.5], 0.2);
+    let mut input = MeshInput::default();
+    let add_loop = |input: &mut MeshInput, polygon: &[Point], marker: i32| {
+        let first = input.points.len() as i32;
+        let n = polygon.len() as i32;
+        input.points.extend_from_slice(polygon);
+        for k in 0..n {
+            input.segments.push([first + k, first + (k + 1) % n]);
+            input
+                .segment_markers
+                .get_or_insert_with(Vec::new)
+                .push(marker);
+        }
+    };
+    let square = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+    add_loop(&mut input, &square, 1);
+    let circle: Vec<Point> = (0..circle_segments)
+        .map(|k| {
+            let angle = TAU * k as f64 / circle_segments as f64;
+            [
+                centre[0] + radius * angle.cos(),
+                centre[1] + radius * angle.sin(),
+            ]
+        })
+        .collect();
+    add_loop(&mut input, &circle, 2);
+    for [a, b] in [
+        [[0.10, 0.12], [0.20, 0.17]],
+        [[0.82, 0.10], [0.90, 0.21]],
+        [[0.85, 0.80], [0.93, 0.87]],
+        [[0.08, 0.83], [0.17, 0.90]],
+    ] {
+        let first = input.points.len() as i32;
+        input.points.extend([a, b]);
+        input.segments.push([first, first + 1]);
+        input.segment_markers.get_or_insert_with(Vec::new).push(3);
+    }
+    input.holes.push(centre);
+    let area = 1.0 - polygon_area(&circle);
+    Pslg {
+        area: Some(area),
+        area_ignoring_holes: Some(1.0),
+        hole_polygons: vec![circle],
+        ..Pslg::new(
+            format!("unit square with a hole of {circle_segments} segments"),
+            input,
+        )
+    }
 }

@@ -355,6 +355,32 @@ pub fn segment_chains(
     Ok(chains)
 }
 
+/// Triangle's marker of the edge between output vertices `a` and `b` (zero-based): the first
+/// non-zero marker of the input segments whose chains contain it; else 1 on the mesh boundary;
+/// else 0 (`chains` as from [`segment_chains`]).
+pub fn edge_marker_rule<'m>(
+    input: &MeshInput,
+    mesh: &'m MeshView<'_>,
+    chains: &BTreeMap<usize, Vec<usize>>,
+) -> impl Fn(usize, usize) -> i32 + 'm {
+    let mut piece_rule: HashMap<[usize; 2], i32> = HashMap::new();
+    for (&i, chain) in chains {
+        let marker = input.segment_markers.as_ref().map_or(0, |m| m[i]);
+        if marker == 0 {
+            continue;
+        }
+        for w in chain.windows(2) {
+            piece_rule.entry(sorted_pair(w[0], w[1])).or_insert(marker);
+        }
+    }
+    move |a: usize, b: usize| {
+        piece_rule
+            .get(&sorted_pair(a, b))
+            .copied()
+            .unwrap_or(i32::from(mesh.is_boundary_edge(a, b)))
+    }
+}
+
 /// Triangle's marker rules, on an output with markers:
 /// - a vertex in the mesh: its input marker if non-zero; else the marker of the first segment
 ///   (in input order) with a non-zero marker whose chain passes through it; else 1 on the mesh
@@ -374,7 +400,6 @@ pub fn check_markers(
     let out = mesh.out;
     let segment_marker = |i: usize| input.segment_markers.as_ref().map_or(0, |m| m[i]);
     let mut vertex_rule: HashMap<usize, i32> = HashMap::new();
-    let mut piece_rule: HashMap<[usize; 2], i32> = HashMap::new();
     for (&i, chain) in chains {
         let marker = segment_marker(i);
         if marker == 0 {
@@ -383,16 +408,8 @@ pub fn check_markers(
         for &v in chain {
             vertex_rule.entry(v).or_insert(marker);
         }
-        for w in chain.windows(2) {
-            piece_rule.entry(sorted_pair(w[0], w[1])).or_insert(marker);
-        }
     }
-    let edge_rule = |a: usize, b: usize| {
-        piece_rule
-            .get(&sorted_pair(a, b))
-            .copied()
-            .unwrap_or(i32::from(mesh.is_boundary_edge(a, b)))
-    };
+    let edge_rule = edge_marker_rule(input, mesh, chains);
     let markers = out.point_markers.as_deref().ok_or("no point markers")?;
     for v in (0..mesh.points.len()).filter(|&v| mesh.in_mesh[v]) {
         let given = input_vertex(v)

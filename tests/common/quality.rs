@@ -8,10 +8,11 @@
 //! - [`check_conforming_delaunay`]: every edge locally Delaunay, segments included, and every
 //!   circumcentre inside the meshed domain;
 //! - [`new_vertices_on_segments`]: the vertices refinement put on input segments (`Y`, `YY`);
+//! - [`check_second_order`]: `o2`'s midpoint nodes (exact, opposite their corners, one per edge);
 //! - [`normalized`]: a shape scaled by a power of two (exactly) to fit the unit box, so that the
 //!   absolute area bounds of the switches mean the same on every shape.
 
-use std::collections::{BTreeMap, HashSet};
+use std::collections::{BTreeMap, HashMap, HashSet};
 use std::os::raw::{c_char, c_int, c_void};
 
 use triangle_rs::data::{Hooks, Input, Output};
@@ -550,4 +551,87 @@ pub fn new_vertices_on_segments(
         }
     }
     found
+}
+
+/// `o2`: six nodes per triangle; nodes 4, 5, 6 lie exactly at the midpoints (`0.5 · (p + q)` per
+/// coordinate) of the edges opposite corners 1, 2, 3; every edge of the mesh has one midpoint
+/// node, shared by the triangles on both sides, which is no corner and no other edge's; every
+/// output point is a corner, a midpoint, or an input vertex left out of the mesh (`input_count`
+/// input vertices come first); the midpoint of edge a-b has the marker `edge_marker(a, b)` (when
+/// markers are written). Returns the number of midpoint nodes.
+pub fn check_second_order(
+    mesh: &MeshView<'_>,
+    input_count: usize,
+    edge_marker: &dyn Fn(usize, usize) -> i32,
+) -> Result<usize, String> {
+    let out = mesh.out;
+    if out.counts.corners != 6 {
+        return Err(format!("{} corners per triangle, not 6", out.counts.corners));
+    }
+    let nodes = out.triangles.as_deref().unwrap_or_default();
+    let base = out.base as usize;
+    let mut midpoint_of: HashMap<[usize; 2], usize> = HashMap::new();
+    let mut edge_of: HashMap<usize, [usize; 2]> = HashMap::new();
+    for (t, row) in nodes.chunks_exact(6).enumerate() {
+        let row: Vec<usize> = row.iter().map(|&v| (v as usize).wrapping_sub(base)).collect();
+        if row.iter().any(|&v| v >= mesh.points.len()) {
+            return Err(format!("triangle {t} {row:?} has a node out of range"));
+        }
+        for k in 0..3 {
+            let (a, b, m) = (row[(k + 1) % 3], row[(k + 2) % 3], row[3 + k]);
+            let (p, q) = (mesh.points[a], mesh.points[b]);
+            let expected = [0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1])];
+            if mesh.points[m] != expected {
+                return Err(format!(
+                    "triangle {t} {row:?}: node {} is at {:?}, not at the midpoint {expected:?} of the edge opposite corner {}",
+                    4 + k,
+                    mesh.points[m],
+                    k + 1
+                ));
+            }
+            let edge = [a.min(b), a.max(b)];
+            if *midpoint_of.entry(edge).or_insert(m) != m {
+                return Err(format!(
+                    "edge {edge:?} has two midpoint nodes, {} and {m}",
+                    midpoint_of[&edge]
+                ));
+            }
+            if *edge_of.entry(m).or_insert(edge) != edge {
+                return Err(format!(
+                    "node {m} is the midpoint of edges {:?} and {edge:?}",
+                    edge_of[&m]
+                ));
+            }
+        }
+    }
+    let edge_count = mesh.edges.keys().filter(|&&(a, b)| a < b || !mesh.edges.contains_key(&(b, a))).count();
+    if midpoint_of.len() != edge_count {
+        return Err(format!(
+            "{} midpoint nodes for {edge_count} edges",
+            midpoint_of.len()
+        ));
+    }
+    for (&m, edge) in &edge_of {
+        if mesh.in_mesh[m] {
+            return Err(format!("the midpoint node {m} of edge {edge:?} is a corner too"));
+        }
+        if let Some(markers) = &out.point_markers {
+            let expected = edge_marker(edge[0], edge[1]);
+            if markers[m] != expected {
+                return Err(format!(
+                    "the midpoint node {m} of edge {edge:?}: marker {}, expected {expected}",
+                    markers[m]
+                ));
+            }
+        }
+    }
+    for v in 0..mesh.points.len() {
+        if !mesh.in_mesh[v] && !edge_of.contains_key(&v) && v >= input_count {
+            return Err(format!(
+                "output point {v} {:?} is neither a corner, a midpoint nor an input vertex",
+                mesh.points[v]
+            ));
+        }
+    }
+    Ok(midpoint_of.len())
 }

@@ -154,17 +154,25 @@ fn sorted_triangles(mesh: &Triangulation) -> Vec<[i32; 3]> {
     triangles
 }
 
+/// What [`time_interleaved`] measured: our median times and last output, and Triangle's when it
+/// ran.
+pub struct Interleaved {
+    pub ours: Times,
+    pub ours_mesh: Triangulation,
+    pub theirs: Option<(Times, Triangulation)>,
+}
+
 /// Calls ours and, if `triangle` is given, Triangle alternately on `input` (ours, Triangle,
-/// ours, …), `reps` times each; prints the median times (each line starting with `indent`),
-/// the speed-up, and checks that both give the same triangles. Returns our median times and
-/// our last output.
-pub fn compare_interleaved(
+/// ours, …), `reps` times each; prints the median times (each line starting with `indent`) and
+/// the speed-up. The outputs are returned unchecked: refinement gives different, equally valid
+/// meshes (see [`compare_interleaved`] for outputs that must be identical).
+pub fn time_interleaved(
     switches: &str,
     input: &MeshInput,
     reps: usize,
     triangle: Option<&'static Reference>,
     indent: &str,
-) -> (Times, Triangulation) {
+) -> Interleaved {
     let (mut ours_times, mut theirs_times) = (Vec::new(), Vec::new());
     let (mut ours_mesh, mut theirs_mesh) = (None, None);
     for _ in 0..reps.max(1) {
@@ -178,18 +186,42 @@ pub fn compare_interleaved(
         }
     }
     let ours = Times::median(&ours_times);
-    let ours_mesh = ours_mesh.expect("at least one repetition");
     println!("{indent}triangle-rs:  {}", ours.describe());
-    let Some(theirs_mesh) = theirs_mesh else {
+    let theirs = theirs_mesh.map(|mesh| {
+        let theirs = Times::median(&theirs_times);
+        println!("{indent}Triangle 1.6: {}", theirs.describe());
+        println!(
+            "{indent}speed-up:     {:.2}× wall, {:.2}× cpu (Triangle's time / ours)",
+            theirs.wall.as_secs_f64() / ours.wall.as_secs_f64(),
+            theirs.cpu.as_secs_f64() / ours.cpu.as_secs_f64()
+        );
+        (theirs, mesh)
+    });
+    Interleaved {
+        ours,
+        ours_mesh: ours_mesh.expect("at least one repetition"),
+        theirs,
+    }
+}
+
+/// [`time_interleaved`], then checks that both give the same triangles (for the unique answers:
+/// Delaunay and constrained Delaunay triangulations). Returns our median times and our last
+/// output.
+pub fn compare_interleaved(
+    switches: &str,
+    input: &MeshInput,
+    reps: usize,
+    triangle: Option<&'static Reference>,
+    indent: &str,
+) -> (Times, Triangulation) {
+    let Interleaved {
+        ours,
+        ours_mesh,
+        theirs,
+    } = time_interleaved(switches, input, reps, triangle, indent);
+    let Some((_, theirs_mesh)) = theirs else {
         return (ours, ours_mesh);
     };
-    let theirs = Times::median(&theirs_times);
-    println!("{indent}Triangle 1.6: {}", theirs.describe());
-    println!(
-        "{indent}speed-up:     {:.2}× wall, {:.2}× cpu (Triangle's time / ours)",
-        theirs.wall.as_secs_f64() / ours.wall.as_secs_f64(),
-        theirs.cpu.as_secs_f64() / ours.cpu.as_secs_f64()
-    );
     let (ours_triangles, theirs_triangles) =
         (sorted_triangles(&ours_mesh), sorted_triangles(&theirs_mesh));
     assert!(

@@ -1,0 +1,85 @@
+//! Quality meshing (issue "Quality meshing", item 8's benchmark): our `triangulate` through the
+//! C ABI against Debian's Triangle 1.6 in the same process, interleaved (ours, Triangle, ours,
+//! …), `REPS` repetitions each (default 5), on two inputs:
+//! (a) the unit square with a circular hole (centre (0.5, 0.5), radius 0.2, 256 segments, a hole
+//!     point at the centre) and four short free-standing segments (`common::pslg::square_with_hole`),
+//!     switches `pq30a0.0000014Q` (about 10^6 triangles);
+//! (b) a random star-shaped polygon of 3000 vertices (`common::pslg::star_polygon`, radius
+//!     uniform in [0.1, 1]), switches `pq20Q`.
+//! Prints the medians of wall-clock and process CPU time with the time ratio, and — refinement
+//! has no unique answer — the triangle counts with their ratio and both smallest angles. Both
+//! meshes are checked to be valid meshes of the domain (its area, every boundary edge a
+//! segment).
+//!
+//! Run with `cargo bench --bench refine` (`REPS=…` for more or fewer repetitions). Under
+//! `cargo test --all-targets` it runs as a smoke test (a coarser area bound, a 200-vertex star,
+//! one repetition).
+
+#[path = "../tests/common/mod.rs"]
+mod common;
+
+use common::pslg::{square_with_hole, star_polygon_pslg, Pslg};
+use common::pslg_checks::MeshView;
+use common::quality::smallest_angle;
+use common::timing::{benchmarking, number_from_env, time_interleaved, Interleaved};
+use common::Triangulation;
+
+const STAR_SEED: u64 = 0x5EED_0C07;
+
+/// Triangles and smallest angle of a valid mesh of `pslg`'s domain (panics otherwise).
+fn measure(pslg: &Pslg, switches: &str, who: &str, out: &Triangulation) -> (usize, f64) {
+    let context = format!("{}, \"{switches}\", {who} mesh", pslg.name);
+    let mesh = MeshView::of(out).unwrap_or_else(|e| panic!("{context}: {e}"));
+    assert!(!mesh.triangles.is_empty(), "{context}: no triangle");
+    if let Some(expected) = pslg.expected_area(switches) {
+        let found = mesh.area();
+        assert!(
+            (found - expected).abs() <= 1e-9 * expected,
+            "{context}: the triangles' area is {found}, the domain's {expected}"
+        );
+    }
+    (mesh.triangles.len(), smallest_angle(&mesh))
+}
+
+fn bench(pslg: &Pslg, switches: &str, reps: usize) {
+    println!("{}, switches \"{switches}\":", pslg.name);
+    let reference = common::reference();
+    let Interleaved {
+        ours_mesh, theirs, ..
+    } = time_interleaved(switches, &pslg.input_for(switches), reps, reference, "  ");
+    let (ours_count, ours_angle) = measure(pslg, switches, "our", &ours_mesh);
+    let Some((_, theirs_mesh)) = theirs else {
+        println!("  Triangle 1.6: not installed, no comparison");
+        println!("  triangles:    {ours_count}; min angle {ours_angle:.4}°");
+        return;
+    };
+    let (theirs_count, theirs_angle) = measure(pslg, switches, "Triangle's", &theirs_mesh);
+    println!(
+        "  triangles:    {ours_count} (ours), {theirs_count} (Triangle's): {:.3}× Triangle's",
+        ours_count as f64 / theirs_count as f64
+    );
+    println!(
+        "  min angle:    {ours_angle:.4}° (ours), {theirs_angle:.4}° (Triangle's)"
+    );
+}
+
+fn main() {
+    let full = benchmarking();
+    let reps = if full {
+        number_from_env("REPS", 5).max(1)
+    } else {
+        1
+    };
+    println!(
+        "Quality meshing against Triangle 1.6, {reps} interleaved repetition(s){}",
+        if full { "" } else { " (smoke run: small inputs)" }
+    );
+    let square = square_with_hole(256);
+    bench(
+        &square,
+        if full { "pq30a0.0000014Q" } else { "pq30a0.001Q" },
+        reps,
+    );
+    let star = star_polygon_pslg(if full { 3000 } else { 200 }, STAR_SEED);
+    bench(&star, "pq20Q", reps);
+}
