@@ -48,6 +48,7 @@ enum Walk {
     HitsSegment(u32),
 }
 
+#[derive(Clone)]
 pub struct Constrainer<P: Predicates> {
     pub inserter: Inserter<P>,
     /// Vertices created at crossings, in creation order.

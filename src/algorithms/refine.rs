@@ -31,8 +31,14 @@ use crate::mesh::{next, prev, triangle_of, GHOST, NONE, OUTSIDE};
 
 /// The largest minimum angle for which Delaunay refinement is proven to terminate.
 pub const GUARANTEED_ANGLE: f64 = 28.6;
-/// Above that angle, refinement first runs to the guaranteed angle, then goes on toward the
-/// asked one with a budget of this many Steiner points per triangle it had then (plus a few).
+/// Above that angle, refinement first runs straight toward it with a budget of this many new
+/// vertices per triangle of the unrefined mesh (plus what the area bound asks for).
+const STRAIGHT_BUDGET_PER_TRIANGLE: u64 = 64;
+/// If that is not enough, the straight run may go on to this many new vertices per triangle of
+/// the mesh refined to the guaranteed angle.
+const GUARANTEED_MULTIPLE: u64 = 4;
+/// Failing that, the mesh refined to the guaranteed angle goes on toward the asked one with a
+/// budget of this many new vertices per triangle it has (plus a few).
 const UNGUARANTEED_BUDGET_PER_TRIANGLE: u64 = 2;
 
 /// What makes a triangle bad, and what may be done about it.
@@ -126,6 +132,27 @@ impl BadQueue {
     }
 }
 
+/// How a budgeted refinement run ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Outcome {
+    Finished,
+    Cancelled,
+    /// The `S` budget is spent.
+    UserBudget,
+    /// The budget of the run is spent.
+    OutOfBudget,
+}
+
+/// The state of a refinement, to come back to.
+struct Snapshot<P: Predicates> {
+    cdt: Constrainer<P>,
+    attributes: Vec<f64>,
+    kinds: Vec<VertexKind>,
+    steiner_points: u64,
+    skipped: u64,
+    unsplittable: HashSet<(u32, u32)>,
+}
+
 /// Where the straight walk from a bad triangle toward its new point ends.
 enum Walk {
     /// The point lies in (or on the boundary of) the domain at this location.
@@ -175,7 +202,7 @@ pub struct Refiner<'r, 'q, P: Predicates> {
     report: Report,
     /// Bad triangles and segments left alone because splitting them would make too short an edge.
     skipped: u64,
-    stopped: bool,
+    cancelled: bool,
     polls: u32,
 }
 
@@ -219,7 +246,7 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
             unsplittable: HashSet::new(),
             report: Report::default(),
             skipped: 0,
-            stopped: false,
+            cancelled: false,
             polls: 0,
         };
         refiner.set_angle(quality.min_angle.unwrap_or(0.0));
@@ -236,27 +263,10 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
 
     /// Refines until no subsegment is encroached and no triangle is bad (or a limit stops it).
     pub fn run(mut self) -> Report {
-        let target = self.quality.min_angle;
-        let unguaranteed = target.is_some_and(|angle| angle > GUARANTEED_ANGLE);
-        if unguaranteed {
-            self.set_angle(GUARANTEED_ANGLE);
-        }
-        self.refine_all();
-        if let (true, Some(angle)) = (unguaranteed, target) {
-            // Beyond the proven bound refinement may never end (it can cascade into ever smaller
-            // triangles); go on toward the asked angle with a budget proportional to the mesh.
-            self.set_angle(angle);
-            let triangles = (0..self.cdt.inserter.mesh.triangle_count()).filter(|&t| self.inside(t)).count() as u64;
-            let budget = self.report.steiner_points + UNGUARANTEED_BUDGET_PER_TRIANGLE * triangles + 16;
-            self.steiner_limit = Some(self.quality.max_steiner.map_or(budget, |limit| limit.min(budget)));
-            self.refine_all();
-            if self.report.steiner_points >= budget && !self.bad.is_empty() {
-                self.report.warnings.push(format!(
-                    "A minimum angle of {angle}° is above {GUARANTEED_ANGLE}°, the largest for which Delaunay \
-                     refinement is guaranteed to terminate, and this input needs more: refinement stopped after \
-                     {} Steiner points with some angles below {angle}° (the mesh is valid).",
-                    self.report.steiner_points
-                ));
+        match self.quality.min_angle {
+            Some(angle) if angle > GUARANTEED_ANGLE => self.refine_beyond_the_guarantee(angle),
+            _ => {
+                self.refine_all();
             }
         }
         if self.skipped > 0 {
@@ -267,6 +277,112 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
             ));
         }
         self.report
+    }
+
+    /// Refinement toward an angle above 28.6°, where it may never end (it can cascade into ever
+    /// smaller triangles near small input angles). Usually it ends, and refining straight toward
+    /// the angle, as Triangle does, gives the best mesh; so that runs first, with a generous
+    /// budget of new vertices. If the budget runs out, the mesh refined to 28.6° (which always
+    /// ends) tells how big a mesh the input needs, and the straight run may go on to a multiple
+    /// of that. Failing that, the 28.6° mesh is refined toward the angle with a small budget and
+    /// whatever that leaves is repaired at 28.6°: the result meets the guaranteed angle, and a
+    /// warning says that it does not meet the asked one.
+    fn refine_beyond_the_guarantee(&mut self, angle: f64) {
+        let start = self.snapshot();
+        self.set_angle(angle);
+        let area_estimate = self.quality.max_area.map_or(0.0, |m| 4.0 * self.domain_area() / m).min(1e9) as u64;
+        let budget = STRAIGHT_BUDGET_PER_TRIANGLE * self.inside_triangle_count() + area_estimate + 1024;
+        if self.refine_all_within(Some(self.report.steiner_points + budget)) != Outcome::OutOfBudget {
+            return;
+        }
+        let straight = self.snapshot();
+        self.restore(start);
+        self.set_angle(GUARANTEED_ANGLE);
+        if self.refine_all_within(None) != Outcome::Finished {
+            return; // cancelled, or stopped by `S`
+        }
+        let guaranteed_triangles = self.inside_triangle_count();
+        let limit = straight.steiner_points.max(self.report.steiner_points) + GUARANTEED_MULTIPLE * guaranteed_triangles;
+        if straight.steiner_points < limit {
+            let guaranteed = self.snapshot();
+            self.restore(straight);
+            self.set_angle(angle);
+            if self.refine_all_within(Some(limit)) != Outcome::OutOfBudget {
+                return;
+            }
+            self.restore(guaranteed);
+        }
+        self.set_angle(angle);
+        let budget = self.report.steiner_points + UNGUARANTEED_BUDGET_PER_TRIANGLE * guaranteed_triangles + 16;
+        if self.refine_all_within(Some(budget)) == Outcome::OutOfBudget {
+            self.set_angle(GUARANTEED_ANGLE);
+            self.refine_all_within(None);
+            self.report.warnings.push(format!(
+                "A minimum angle of {angle}° is above {GUARANTEED_ANGLE}°, the largest for which Delaunay \
+                 refinement is guaranteed to terminate, and this input needs more: refinement stopped after \
+                 {} Steiner points with some angles below {angle}° but none below {GUARANTEED_ANGLE}° (the mesh \
+                 is valid).",
+                self.report.steiner_points
+            ));
+        }
+    }
+
+    /// Runs [`Self::refine_all`] until it finishes or has made `limit` Steiner points in all (or
+    /// fewer under `S`), and says how it ended.
+    fn refine_all_within(&mut self, limit: Option<u64>) -> Outcome {
+        let user_limit = self.quality.max_steiner;
+        self.steiner_limit = match (limit, user_limit) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (a, b) => a.or(b),
+        };
+        self.refine_all();
+        if self.cancelled {
+            Outcome::Cancelled
+        } else if self.bad.is_empty() && self.encroached.is_empty() {
+            Outcome::Finished
+        } else if user_limit.is_some() && self.steiner_limit == user_limit {
+            Outcome::UserBudget
+        } else {
+            Outcome::OutOfBudget
+        }
+    }
+
+    /// The state of refinement, to come back to.
+    fn snapshot(&self) -> Snapshot<P> {
+        Snapshot {
+            cdt: self.cdt.clone(),
+            attributes: self.attributes.clone(),
+            kinds: self.kinds.clone(),
+            steiner_points: self.report.steiner_points,
+            skipped: self.skipped,
+            unsplittable: self.unsplittable.clone(),
+        }
+    }
+
+    fn restore(&mut self, snapshot: Snapshot<P>) {
+        *self.cdt = snapshot.cdt;
+        *self.attributes = snapshot.attributes;
+        self.kinds = snapshot.kinds;
+        self.report.steiner_points = snapshot.steiner_points;
+        self.skipped = snapshot.skipped;
+        self.unsplittable = snapshot.unsplittable;
+        self.encroached.clear();
+        self.bad.clear();
+    }
+
+    fn inside_triangle_count(&self) -> u64 {
+        (0..self.cdt.inserter.mesh.triangle_count()).filter(|&t| self.inside(t)).count() as u64
+    }
+
+    fn domain_area(&self) -> f64 {
+        let mesh = &self.cdt.inserter.mesh;
+        (0..mesh.triangle_count())
+            .filter(|&t| self.inside(t))
+            .map(|t| {
+                let [a, b, c] = mesh.triangle(t).map(|v| mesh.point(v));
+                0.5 * P::orient2d(a, b, c)
+            })
+            .sum()
     }
 
     /// Sets the angle bound θ (degrees): the bad-angle test, the lens and the off-centre.
@@ -307,21 +423,18 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         }
     }
 
+    /// Whether to stop: the caller cancelled (polled now and then), or the limit is reached.
     fn should_stop(&mut self) -> bool {
-        if self.stopped {
+        if self.cancelled {
             return true;
-        }
-        if let Some(limit) = self.steiner_limit {
-            if self.report.steiner_points >= limit {
-                self.stopped = true;
-            }
         }
         self.polls = self.polls.wrapping_add(1);
         if self.polls % 64 == 0 && self.quality.cancel.is_some_and(|cancelled| cancelled()) {
             self.report.warnings.push("Refinement was cancelled; the mesh is valid but not refined.".into());
-            self.stopped = true;
+            self.cancelled = true;
+            return true;
         }
-        self.stopped
+        self.steiner_limit.is_some_and(|limit| self.report.steiner_points >= limit)
     }
 
     /// Whether the segment of half-edge `e` may receive Steiner points (`Y`, `YY`).
@@ -368,7 +481,7 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         let mut splits = 0;
         while let Some((u, v, forced)) = self.encroached.pop_front() {
             if self.should_stop() {
-                self.encroached.clear();
+                self.encroached.push_front((u, v, forced));
                 break;
             }
             let mesh = &self.cdt.inserter.mesh;
@@ -651,7 +764,7 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
             return;
         }
         match self.walk(t, x) {
-            Walk::Lost => {}
+            Walk::Lost => self.skipped += 1,
             Walk::Blocked(s) => {
                 // A segment hides the new point from the triangle: the point may not be
                 // inserted, and the segment is split instead (Ruppert's rule; with lenses the
@@ -737,7 +850,9 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
                 }
             }
             if exit == NONE {
-                return Walk::Lost;
+                // No edge crosses the ray: it is too short to have a direction (x is the
+                // centroid, as for an equilateral triangle's circumcentre), or degenerate.
+                return self.walk_ends_in(t, x).unwrap_or(Walk::Lost);
             }
             let (u, v) = (mesh.point(mesh.origin(exit)), mesh.point(mesh.dest(exit)));
             let side = P::orient2d(u, v, x);
@@ -768,6 +883,27 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
             entry = f;
         }
         Walk::Lost
+    }
+
+    /// Where `x` lies in triangle `t`, if it lies in it (closed): in it, on an edge (a segment
+    /// hides nothing then, but a point on a segment splits it: `Blocked`), or on a vertex.
+    fn walk_ends_in(&self, t: u32, x: Point) -> Option<Walk> {
+        let mesh = &self.cdt.inserter.mesh;
+        let sides = [0, 1, 2].map(|i| {
+            let e = 3 * t + i;
+            P::orient2d(mesh.point(mesh.origin(e)), mesh.point(mesh.dest(e)), x)
+        });
+        if sides.iter().any(|&side| side < 0.0) {
+            return None;
+        }
+        let on: Vec<u32> = (0..3).filter(|&i| sides[i as usize] == 0.0).map(|i| 3 * t + i).collect();
+        Some(match on[..] {
+            [] => Walk::Found(Location::InTriangle(t)),
+            [e] if mesh.is_segment(e) => Walk::Blocked(e),
+            [e] => Walk::Found(Location::OnEdge(e)),
+            // On two edges: at their common corner.
+            _ => mesh.triangle(t).into_iter().find(|&w| mesh.point(w) == x).map_or(Walk::Lost, |w| Walk::Found(Location::OnVertex(w))),
+        })
     }
 
     /// The subsegments that `x` would encroach if inserted at `location`: those bounding the

@@ -45,6 +45,7 @@ impl Triangulation {
 }
 
 /// The insertion engine: a mesh plus the state of the walk and of the flip stack.
+#[derive(Clone)]
 pub struct Inserter<P: Predicates> {
     pub mesh: Mesh,
     /// A triangle incident to the last inserted vertex: where the next walk starts.
