@@ -55,7 +55,7 @@ pub struct Constrainer<P: Predicates> {
     pub crossings: Vec<Crossing>,
     /// The marker of each segment id (the ids that [`Mesh::segment`](crate::mesh::Mesh) holds).
     pub markers: Vec<i32>,
-    /// The input endpoints of each segment id (`(NONE, NONE)` for the hull's segments).
+    /// The endpoints of each segment id, as given (before crossings split it).
     pub ends: Vec<(u32, u32)>,
     /// `s`: recover segments by inserting midpoints (a conforming triangulation) instead of
     /// flipping crossing edges away.
@@ -346,14 +346,15 @@ impl<P: Predicates> Constrainer<P> {
     }
 
     /// Marks every hull edge that is not a segment yet as a segment with marker `marker` (the `c`
-    /// switch, and refinement of a point set).
+    /// switch, the boundary of a mesh being refined, and refinement of a point set). Each is a
+    /// segment of its own, ending at its two vertices.
     pub fn mark_hull(&mut self, marker: i32) {
-        let id = self.new_segment_id(marker, NONE, NONE);
-        let mesh = &mut self.inserter.mesh;
-        for e in 0..mesh.corners.len() as u32 {
+        for e in 0..self.inserter.mesh.corners.len() as u32 {
+            let mesh = &self.inserter.mesh;
             let (a, b) = (mesh.origin(e), mesh.dest(e));
             if a != GHOST && b != GHOST && mesh.apex(mesh.twin(e)) == GHOST && mesh.segment_of(e) == NONE {
-                mesh.set_segment(e, id);
+                let id = self.new_segment_id(marker, a, b);
+                self.inserter.mesh.set_segment(e, id);
             }
         }
     }

@@ -64,8 +64,9 @@ pub struct Quality<'a> {
 pub enum VertexKind {
     /// An input vertex (or a crossing of input segments).
     Input,
-    /// A vertex inserted on a segment by refinement.
-    OnSegment,
+    /// A vertex inserted on a segment by refinement; `corner`: the input vertex it was put at a
+    /// power-of-two distance from (concentric shells), or [`NONE`] (a midpoint).
+    OnSegment { corner: u32 },
     /// A vertex inserted inside the domain by refinement.
     Free,
 }
@@ -500,10 +501,12 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
     /// Where to split subsegment `u`–`v` (parameter from `u`): at a power-of-two distance from
     /// an end that is an input vertex where segments meet at an acute angle ("concentric shells",
     /// Ruppert 1995 §5, Shewchuk 2002 §4.1), from the sharper one if both are; else the midpoint.
-    fn split_parameter(&self, u: u32, v: u32) -> f64 {
+    /// Returns the parameter and the corner the split point is measured from ([`NONE`] for the
+    /// midpoint).
+    fn split_parameter(&self, u: u32, v: u32) -> (f64, u32) {
         let (cu, cv) = (self.sharpest_corner(u), self.sharpest_corner(v));
         if cu.is_none() && cv.is_none() {
-            return 0.5;
+            return (0.5, NONE);
         }
         let from_u = match (cu, cv) {
             (Some(a), Some(b)) => a >= b,
@@ -520,9 +523,9 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
             d *= 2.0;
         }
         if from_u {
-            d / length
+            (d / length, u)
         } else {
-            1.0 - d / length
+            (1.0 - d / length, v)
         }
     }
 
@@ -531,7 +534,7 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
     /// for vertices whose segments meet at right or obtuse angles only. The smallest angle is
     /// between two segments consecutive around `x`, so one turn around it suffices.
     fn sharpest_corner(&self, x: u32) -> Option<f64> {
-        if self.kinds[x as usize] == VertexKind::OnSegment {
+        if matches!(self.kinds[x as usize], VertexKind::OnSegment { .. }) {
             return None;
         }
         let mesh = &self.cdt.inserter.mesh;
@@ -581,7 +584,7 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
     fn split_segment(&mut self, e: u32) -> bool {
         let mesh = &self.cdt.inserter.mesh;
         let (u, v) = (mesh.origin(e), mesh.dest(e));
-        let t = self.split_parameter(u, v);
+        let (t, corner) = self.split_parameter(u, v);
         let (pu, pv) = (self.pt(u), self.pt(v));
         let p = [pu[0] + t * (pv[0] - pu[0]), pu[1] + t * (pv[1] - pu[1])];
         let too_short = |q: Point, r: Point| (q[0] - r[0]).powi(2) + (q[1] - r[1]).powi(2) < self.floor2;
@@ -595,7 +598,7 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
             self.skipped += 1;
             return false;
         }
-        let vertex = self.new_vertex(p, VertexKind::OnSegment, |attrs, i| {
+        let vertex = self.new_vertex(p, VertexKind::OnSegment { corner }, |attrs, i| {
             attrs[u as usize * i.1 + i.0] + t * (attrs[v as usize * i.1 + i.0] - attrs[u as usize * i.1 + i.0])
         });
         let _ = self.cdt.inserter.insert_at(vertex, Location::OnEdge(e));
@@ -667,7 +670,7 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
             let (o, p, q) = (mesh.point(apex), mesh.point(u), mesh.point(v));
             let dot = (p[0] - o[0]) * (q[0] - o[0]) + (p[1] - o[1]) * (q[1] - o[1]);
             let cos2 = if dot > 0.0 { dot * dot / (l1 * l2) } else { 0.0 };
-            cos2 > self.cos2_min_angle && !self.is_forced_by_input(u, v)
+            cos2 > self.cos2_min_angle && !self.is_forced_by_input(t, apex, u, v)
         };
         let bad = skinny || {
             let regional = if self.quality.variable_area {
@@ -684,28 +687,48 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         }
     }
 
-    /// A skinny triangle whose shortest edge joins two vertices inserted on two segments that
-    /// meet at an input vertex, at equal distances from it, is forced by the small input angle
-    /// there (the concentric shells put them there): splitting it would only cut the angle into
-    /// more skinny triangles, so it is left alone (Shewchuk 2002, §4; Triangle does the same).
-    fn is_forced_by_input(&self, u: u32, v: u32) -> bool {
-        if self.kinds[u as usize] != VertexKind::OnSegment || self.kinds[v as usize] != VertexKind::OnSegment {
-            return false;
+    /// Whether the small angle of triangle `t` opposite its shortest edge `u`–`v`, at `apex`, is
+    /// forced by a small angle between input segments, so that splitting the triangle would only
+    /// cut that angle into more skinny triangles (Shewchuk 2002, §4): it is left alone when
+    /// - both its sides at `apex` are segments: the angle is one between segments itself; or
+    /// - `u` and `v` were put on two segments at equal distances from the corner where those
+    ///   meet (by concentric shells): the triangle lies in the corner's wedge, between shells.
+    fn is_forced_by_input(&self, t: u32, apex: u32, u: u32, v: u32) -> bool {
+        let mesh = &self.cdt.inserter.mesh;
+        let i = (0..3).find(|&i| mesh.corners[(3 * t + i) as usize] == apex).unwrap_or(0);
+        if mesh.is_segment(3 * t + i) && mesh.is_segment(3 * t + (i + 2) % 3) {
+            return true;
         }
-        let (Some(su), Some(sv)) = (self.segment_through(u), self.segment_through(v)) else {
+        let (VertexKind::OnSegment { corner: cu }, VertexKind::OnSegment { corner: cv }) =
+            (self.kinds[u as usize], self.kinds[v as usize])
+        else {
             return false;
         };
-        let (ends_u, ends_v) = (self.cdt.ends[su as usize], self.cdt.ends[sv as usize]);
-        if su == sv || ends_u.0 == NONE || ends_v.0 == NONE {
-            return false;
-        }
-        let Some(apex) = [ends_u.0, ends_u.1].into_iter().find(|&w| w == ends_v.0 || w == ends_v.1) else {
-            return false;
+        // The corner: the one both were measured from; else where the two segments (as given)
+        // meet: an endpoint of both, or the point where they cross.
+        let o = if cu == cv && cu != NONE {
+            self.pt(cu)
+        } else {
+            let (Some(su), Some(sv)) = (self.segment_through(u), self.segment_through(v)) else {
+                return false;
+            };
+            let (ends_u, ends_v) = (self.cdt.ends[su as usize], self.cdt.ends[sv as usize]);
+            if su == sv || ends_u.0 == NONE || ends_v.0 == NONE {
+                return false;
+            }
+            match [ends_u.0, ends_u.1].into_iter().find(|&w| w == ends_v.0 || w == ends_v.1) {
+                Some(w) => self.pt(w),
+                None => match crossing_point([ends_u.0, ends_u.1].map(|w| self.pt(w)), [ends_v.0, ends_v.1].map(|w| self.pt(w))) {
+                    Some(x) => x,
+                    None => return false,
+                },
+            }
         };
-        let o = self.pt(apex);
         let (p, q) = (self.pt(u), self.pt(v));
-        let (dp, dq) = ((p[0] - o[0]).powi(2) + (p[1] - o[1]).powi(2), (q[0] - o[0]).powi(2) + (q[1] - o[1]).powi(2));
-        dp <= 1.002 * dq && dq <= 1.002 * dp
+        let (a, b) = ([p[0] - o[0], p[1] - o[1]], [q[0] - o[0], q[1] - o[1]]);
+        let (dp, dq, dot) = (a[0] * a[0] + a[1] * a[1], b[0] * b[0] + b[1] * b[1], a[0] * b[0] + a[1] * b[1]);
+        // Equal distances, and an angle below 60° at the corner (cos² > 1/4).
+        dp <= 1.002 * dq && dq <= 1.002 * dp && dot > 0.0 && 4.0 * dot * dot > dp * dq
     }
 
     /// The id of a segment that vertex `v` lies on, if any.
@@ -946,6 +969,20 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         self.cavity = seen;
         found
     }
+}
+
+/// Where segments `a` and `b` cross (in floating point), if they do.
+fn crossing_point(a: [Point; 2], b: [Point; 2]) -> Option<Point> {
+    let d = [a[1][0] - a[0][0], a[1][1] - a[0][1]];
+    let e = [b[1][0] - b[0][0], b[1][1] - b[0][1]];
+    let denominator = d[0] * e[1] - d[1] * e[0];
+    if denominator == 0.0 {
+        return None;
+    }
+    let f = [b[0][0] - a[0][0], b[0][1] - a[0][1]];
+    let s = (f[0] * e[1] - f[1] * e[0]) / denominator;
+    let t = (f[0] * d[1] - f[1] * d[0]) / denominator;
+    ((0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&t)).then(|| [a[0][0] + s * d[0], a[0][1] + s * d[1]])
 }
 
 #[cfg(test)]

@@ -316,6 +316,20 @@ pub fn polygon_with_holes_of(seed: u64, corners: usize) -> Pslg {
 
 /// `n` uniform random vertices and `m` segments between random pairs of them: the segments
 /// cross each other (new vertices). Meant for `c` (the domain is the convex hull).
+/// `input` with the edges of its convex hull added as segments: with `c` they are segments of
+/// the output, and the angles they make with the input segments are angles of the input.
+pub fn with_hull_segments(input: &MeshInput) -> MeshInput {
+    let index = |p: Point| input.points.iter().position(|&q| q == p).expect("a hull point is an input point");
+    let hull: Vec<i32> = convex_hull(&input.points).into_iter().map(|p| index(p) as i32).collect();
+    let mut segments = input.segments.clone();
+    segments.extend((0..hull.len()).map(|i| [hull[i], hull[(i + 1) % hull.len()]]));
+    let segment_markers = input.segment_markers.clone().map(|mut markers| {
+        markers.resize(segments.len(), 1);
+        markers
+    });
+    MeshInput { segments, segment_markers, ..input.clone() }
+}
+
 pub fn crossing_segments(seed: u64, n: usize, m: usize) -> Pslg {
     let mut rng = SplitMix64::new(seed);
     let mut input = MeshInput::default();

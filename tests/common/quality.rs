@@ -194,8 +194,6 @@ pub fn smallest_angle(mesh: &MeshView<'_>) -> f64 {
 pub struct InputAngle {
     pub apex: usize,
     pub degrees: f64,
-    /// Both segments end at the apex.
-    pub shared_endpoint: bool,
     /// The chains of the two segments (output vertices, apex included).
     pub chains: [Vec<usize>; 2],
 }
@@ -230,11 +228,9 @@ pub fn input_angles(
                     .flat_map(|&r1| rays(c2, v).into_iter().map(move |r2| between(r1, r2)))
                     .fold(180.0, f64::min);
                 if degrees < limit {
-                    let ends = |c: &Vec<usize>| v == c[0] || v == c[c.len() - 1];
                     found.push(InputAngle {
                         apex: v,
                         degrees,
-                        shared_endpoint: ends(c1) && ends(c2),
                         chains: [c1.clone(), c2.clone()],
                     });
                 }
@@ -262,12 +258,14 @@ pub const ANGLE_TOLERANCE: f64 = 1e-6;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Exemptions {
     /// Only those that an input angle below θ forces (two input segments meeting at less than
-    /// θ): a triangle whose smallest angle is at the vertex where they meet, or whose three
-    /// corners all lie on the two segments (between concentric-shell vertices).
+    /// θ): a triangle whose smallest angle is at the vertex where they meet, or is formed by two
+    /// output segments (the hull's too, with `c`), or whose three corners all lie on the two
+    /// segments (between concentric-shell vertices).
     BelowTheta,
     /// Also the skinny triangles of Shewchuk's concentric-shell rule (2002, §4), which Triangle
-    /// applies too: the shortest edge joins two new vertices on two segments that share an
-    /// endpoint where they meet at less than 60°, at equal distances from it (within 0.1%).
+    /// applies too: the shortest edge joins two new vertices on two segments that meet at less
+    /// than 60° (at an endpoint of both, or where they cross), at equal distances from where
+    /// they meet (within 0.2%).
     ShellRule,
 }
 
@@ -299,8 +297,7 @@ pub fn check_angles(
         meetings.iter().any(|m| {
             let on = |k: usize, v: usize| m.chains[k].contains(&v) && v != m.apex;
             let (du, dw) = (distance2(u, m.apex), distance2(w, m.apex));
-            m.shared_endpoint
-                && is_new(u)
+            is_new(u)
                 && is_new(w)
                 && ((on(0, u) && on(1, w)) || (on(1, u) && on(0, w)))
                 && du <= 1.002 * dw
@@ -329,7 +326,10 @@ pub fn check_angles(
         });
         // The shortest edge is opposite the smallest angle.
         let shell = shells && shell_pair(c[(k + 1) % 3], c[(k + 2) % 3]);
-        if at_apex || between_segments || shell {
+        // Two segments (input ones, or the hull's with `c`) forming the angle.
+        let [u, w] = [c[(k + 1) % 3], c[(k + 2) % 3]];
+        let segments_at_apex = mesh.is_segment(c[k], u) && mesh.is_segment(c[k], w);
+        if at_apex || between_segments || shell || segments_at_apex {
             report.excused += 1;
             continue;
         }
