@@ -692,7 +692,7 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
     /// cut that angle into more skinny triangles (Shewchuk 2002, §4): it is left alone when
     /// - both its sides at `apex` are segments: the angle is one between segments itself; or
     /// - `u` and `v` were put on two segments at equal distances from the corner where those
-    ///   meet (by concentric shells): the triangle lies in the corner's wedge, between shells.
+    ///   meet at less than θ (by concentric shells): the triangle lies between shells.
     fn is_forced_by_input(&self, t: u32, apex: u32, u: u32, v: u32) -> bool {
         let mesh = &self.cdt.inserter.mesh;
         let i = (0..3).find(|&i| mesh.corners[(3 * t + i) as usize] == apex).unwrap_or(0);
@@ -727,8 +727,8 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         let (p, q) = (self.pt(u), self.pt(v));
         let (a, b) = ([p[0] - o[0], p[1] - o[1]], [q[0] - o[0], q[1] - o[1]]);
         let (dp, dq, dot) = (a[0] * a[0] + a[1] * a[1], b[0] * b[0] + b[1] * b[1], a[0] * b[0] + a[1] * b[1]);
-        // Equal distances, and an angle below 60° at the corner (cos² > 1/4).
-        dp <= 1.002 * dq && dq <= 1.002 * dp && dot > 0.0 && 4.0 * dot * dot > dp * dq
+        // Equal distances, and an angle below θ at the corner: a wider corner can be meshed.
+        dp <= 1.002 * dq && dq <= 1.002 * dp && dot > 0.0 && dot * dot > self.cos2_min_angle * dp * dq
     }
 
     /// The id of a segment that vertex `v` lies on, if any.
