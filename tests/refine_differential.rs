@@ -438,10 +438,12 @@ macro_rules! divergent {
     };
 }
 
-// Ours against Triangle, as measured when these tests were last updated: 6 of 250 cases. All
+// Ours against Triangle, as measured when these tests were last updated: 7 of 250 cases. All
 // but the `Y` ones are small meshes (under 250 triangles) where the order in which bad
 // triangles are split decides a few dozen vertices.
 divergent! {
+    /// 161 triangles, Triangle 140 (ratio 1.150); smallest angle 10.8934°, Triangle 1.3175°.
+    double_hexagon_rpa_on_our_mesh: (Input::Shape("double_hexagon"), Run::RefinePrevious { by_triangle: false }), "engine: more triangles than Triangle, over 10%";
     /// 71 triangles, Triangle 52 (ratio 1.365); smallest angle 31.4806°, Triangle 33.6901°.
     box_in_box_pq30: (Input::Shape("box_in_box"), Run::Switches("pq30")), "engine: more triangles than Triangle, over 10%";
     /// 216 triangles, Triangle 183 (ratio 1.180); smallest angle 21.0297°, Triangle 20.0330°.
