@@ -40,7 +40,7 @@ use common::pslg_checks::{
 };
 use common::quality::{
     area_bound, check_areas, check_conforming_delaunay, check_second_order,
-    new_vertices_on_segments, normalized, smallest_angle,
+    new_vertices_on_segments, normalized, smallest_angle, unrefined_points,
 };
 use common::reference::Reference;
 use common::{ours, reference};
@@ -155,17 +155,6 @@ fn region_bound(attribute: Option<f64>) -> f64 {
         None => PREVIOUS_MESH_AREA,
         Some(a) => [PREVIOUS_MESH_AREA, PREVIOUS_MESH_AREA / 3.0, -1.0, 0.0][a as usize % 4],
     }
-}
-
-/// The output points of our unrefined constrained Delaunay triangulation (input vertices and
-/// crossings): `Y` and `YY` allow only these on segments.
-fn unrefined_points(pslg: &Pslg) -> HashSet<[u64; 2]> {
-    let out = ours("pzQ", &pslg.input).unwrap_or_else(|e| panic!("{}: {e}", pslg.name));
-    out.points
-        .unwrap_or_default()
-        .iter()
-        .map(|p| p.map(f64::to_bits))
-        .collect()
 }
 
 /// What a refined mesh achieved.

@@ -17,7 +17,7 @@
 
 mod common;
 
-use std::collections::{BTreeMap, HashSet};
+use std::collections::BTreeMap;
 use std::os::raw::{c_int, c_void};
 use std::sync::atomic::{AtomicBool, AtomicI32, AtomicUsize, Ordering};
 use std::sync::{mpsc, Arc, Barrier};
@@ -29,7 +29,7 @@ use common::pslg::{self, Pslg};
 use common::pslg_checks::{check_constrained_delaunay, segment_chains, MeshView};
 use common::quality::{
     area, area_bound, check_angles, Exemptions, check_areas, check_conforming_delaunay, engine,
-    new_vertices_on_segments, normalized, ours_reentrant, smallest_angle,
+    new_vertices_on_segments, normalized, ours_reentrant, smallest_angle, unrefined_points,
 };
 use common::{ours, Triangulation};
 use triangle_rs::data::Hooks;
@@ -91,16 +91,6 @@ fn refined(pslg: &Pslg, switches: &str) -> (Triangulation, Vec<String>) {
         "{context}: the engine and the C ABI give different meshes"
     );
     (out, warnings)
-}
-
-/// The number of output points of the constrained Delaunay triangulation (no refinement).
-fn unrefined_points(pslg: &Pslg) -> HashSet<[u64; 2]> {
-    let out = ours("pzQ", &pslg.input).unwrap_or_else(|e| panic!("{}: {e}", pslg.name));
-    out.points
-        .unwrap_or_default()
-        .iter()
-        .map(|p| p.map(f64::to_bits))
-        .collect()
 }
 
 #[test]

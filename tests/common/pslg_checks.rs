@@ -195,24 +195,25 @@ impl<'a> MeshView<'a> {
 /// Every interior edge that is not a segment is locally Delaunay: the opposite vertex is not
 /// strictly inside the circumcircle (exact `incircle`).
 pub fn check_constrained_delaunay(mesh: &MeshView<'_>) -> Result<(), String> {
+    check_locally_delaunay(mesh, false)
+}
+
+/// Every interior edge (segments too if `segments_too`) is locally Delaunay, by exact `incircle`.
+pub fn check_locally_delaunay(mesh: &MeshView<'_>, segments_too: bool) -> Result<(), String> {
     for (&(a, b), &(t, k)) in &mesh.edges {
         let Some(&(u, l)) = mesh.edges.get(&(b, a)) else {
             continue;
         };
-        if a > b || mesh.is_segment(a, b) {
+        let segment = mesh.is_segment(a, b);
+        if a > b || (segment && !segments_too) {
             continue;
         }
         let (apex, opposite) = (mesh.triangles[t][k], mesh.triangles[u][l]);
-        if incircle(
-            mesh.points[a],
-            mesh.points[b],
-            mesh.points[apex],
-            mesh.points[opposite],
-        ) > 0.0
-        {
+        if incircle(mesh.points[a], mesh.points[b], mesh.points[apex], mesh.points[opposite]) > 0.0 {
             return Err(format!(
-                "edge {a}-{b} is not a segment and not locally Delaunay: vertex {opposite} lies inside the circumcircle of {:?}",
-                mesh.triangles[t]
+                "edge {a}-{b} ({}a segment) is not locally Delaunay: vertex {opposite} lies inside the circumcircle of {:?}",
+                if segment { "" } else { "not " },
+                mesh.triangles[t].map(|v| mesh.points[v])
             ));
         }
     }

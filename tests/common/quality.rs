@@ -19,11 +19,11 @@ use triangle_rs::data::{Hooks, Input, Output};
 use triangle_rs::ffi::TriunsuitableUserFn;
 use triangle_rs::options::{Options, SwitchSource};
 
-use super::call::{run_call, Counts, MeshInput, Triangulation};
-use super::checks::{circumcentre, incircle, orient2d};
+use super::call::{ours, run_call, Counts, MeshInput, Triangulation};
+use super::checks::{circumcentre, orient2d};
 use super::points::Point;
 use super::pslg::Pslg;
-use super::pslg_checks::MeshView;
+use super::pslg_checks::{check_locally_delaunay, MeshView};
 
 /// Our engine through its safe Rust entry with `hooks`: the output as the C ABI would write it
 /// (without Voronoi), and the warnings.
@@ -341,6 +341,17 @@ pub fn check_angles(
     Ok(report)
 }
 
+/// The output points of our unrefined constrained Delaunay triangulation of `pslg` (input
+/// vertices and crossings): `Y` and `YY` allow only these on segments.
+pub fn unrefined_points(pslg: &Pslg) -> HashSet<[u64; 2]> {
+    let out = ours("pzQ", &pslg.input).unwrap_or_else(|e| panic!("{}: {e}", pslg.name));
+    out.points
+        .unwrap_or_default()
+        .iter()
+        .map(|p| p.map(f64::to_bits))
+        .collect()
+}
+
 /// The signed area of `abc` (as the engine computes it, up to rounding).
 pub fn area(a: Point, b: Point, c: Point) -> f64 {
     0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
@@ -416,28 +427,7 @@ pub fn area_bound(
 /// `incircle`; and every triangle's circumcentre lies in the meshed domain (up to rounding of
 /// the circumcentre: within `1e-9` of the domain's extent).
 pub fn check_conforming_delaunay(mesh: &MeshView<'_>) -> Result<(), String> {
-    for (&(a, b), &(t, k)) in &mesh.edges {
-        let Some(&(u, l)) = mesh.edges.get(&(b, a)) else {
-            continue;
-        };
-        if a > b {
-            continue;
-        }
-        let (apex, opposite) = (mesh.triangles[t][k], mesh.triangles[u][l]);
-        if incircle(
-            mesh.points[a],
-            mesh.points[b],
-            mesh.points[apex],
-            mesh.points[opposite],
-        ) > 0.0
-        {
-            return Err(format!(
-                "edge {a}-{b} ({}a segment) is not locally Delaunay: vertex {opposite} lies inside the circumcircle of {:?}",
-                if mesh.is_segment(a, b) { "" } else { "not " },
-                mesh.triangles[t].map(|v| mesh.points[v])
-            ));
-        }
-    }
+    check_locally_delaunay(mesh, true)?;
     let locator = Locator::new(mesh);
     for c in &mesh.triangles {
         let [a, b, d] = c.map(|v| mesh.points[v]);
