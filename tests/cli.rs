@@ -171,9 +171,6 @@ fn round_trip_through_our_own_files() {
     }
     // Refining the written mesh with no constraint gives the same triangles again.
     let refined = run(&ours(), dir.path(), &["-Qr", "dots.1"]);
-    if not_supported_yet(&refined, "r") {
-        return;
-    }
     assert!(refined.ok(), "{}", refined.stderr);
     let first = Results::read(&dir, "dots.1.node");
     let second = Results::read(&dir, "dots.2.node");
@@ -191,9 +188,6 @@ fn poly_without_vertices_reads_the_node_file() {
     dir.write("separate.node", &data("separate.node"));
     dir.write("separate.poly", &data("separate.poly"));
     let r = run(&ours(), dir.path(), &["-Q", "separate.poly"]);
-    if not_supported_yet(&r, "p") {
-        return;
-    }
     assert!(r.ok(), "{}", r.stderr);
     let node = files::read_node(&dir.read("separate.1.node"), "n").unwrap();
     assert_eq!(node.point_count(), 6);
