@@ -589,6 +589,34 @@ fn refinement_of_a_mesh_matches_the_reference() {
     compare_refined(&pair, "dots.2", what, None, None);
 }
 
+/// `r` with `p`: the mesh of `x.node`/`x.ele` is refined respecting the segments of `x.poly`
+/// (Triangle's own output, without vertices), and the triangles keep their attributes.
+#[test]
+fn refinement_with_segments_reads_the_poly_file() {
+    let Some(reference_program) = reference() else { return };
+    let setup = TempDir::new("refine-p-setup");
+    setup.write("pslg.poly", &data("pslg.poly"));
+    assert!(run(&reference_program, setup.path(), &["-QpA", "pslg.poly"]).ok());
+    let texts: Vec<(String, String)> = ["pslg.1.node", "pslg.1.ele", "pslg.1.poly"]
+        .iter()
+        .map(|name| (name.to_string(), setup.read(name)))
+        .collect();
+    let inputs: Vec<(&str, &str)> = texts.iter().map(|(n, t)| (n.as_str(), t.as_str())).collect();
+    for (switches, min_angle, max_area) in [("-Qrpq", Some(20.0), None), ("-Qrpa0.5", None, Some(0.5))] {
+        let what = format!("{switches} pslg.1");
+        let Some(pair) = run_both("refine-p", &inputs, &[switches, "pslg.1"]) else {
+            return;
+        };
+        pair.assert_both_succeeded(&what);
+        compare_refined(&pair, "pslg.2", &what, min_angle, max_area);
+        let (ours, theirs) = (
+            files::read_poly(&pair.ours.read("pslg.2.poly"), "pslg.2.poly", false).unwrap(),
+            files::read_poly(&pair.reference.read("pslg.2.poly"), "pslg.2.poly", false).unwrap(),
+        );
+        assert_eq!(ours.holes, theirs.holes, "{what}: holes");
+    }
+}
+
 /// `r` on a mesh of six-node triangles (`o2`): both programs use the corners and leave the
 /// mid-edge nodes out of the output.
 #[test]
