@@ -262,6 +262,34 @@ fn write_outputs(options: &Options, input: &Input<'_>, meshed: &Meshed, mut outp
             }
         }
     }
+    // `r` with six-node triangles: as in Triangle, the input's mid-edge nodes (listed only after
+    // the three corners) are left out of the output, with or without `j`.
+    let mut jettison = options.jettison;
+    if options.refine && input.corners > 3 && !options.jettison {
+        let base = i64::from(options.first_index());
+        let n = mesh.points.len();
+        let mut mid_node_only = vec![false; n];
+        let index = |v: i32| usize::try_from(i64::from(v) - base).ok().filter(|&i| i < n);
+        for t in input.triangles.chunks_exact(input.corners) {
+            for &v in &t[3..] {
+                if let Some(i) = index(v) {
+                    mid_node_only[i] = true;
+                }
+            }
+        }
+        for t in input.triangles.chunks_exact(input.corners) {
+            for &v in &t[..3] {
+                if let Some(i) = index(v) {
+                    mid_node_only[i] = false;
+                }
+            }
+        }
+        if mid_node_only.contains(&true) {
+            jettison = true;
+            // With `jettison` set, `vertex_in_mesh` says which vertices are kept.
+            vertex_in_mesh = mid_node_only.iter().map(|&mid| !mid).collect();
+        }
+    }
     let finished = FinishedMesh {
         mesh,
         point_attributes: &meshed.point_attributes,
@@ -273,7 +301,7 @@ fn write_outputs(options: &Options, input: &Input<'_>, meshed: &Meshed, mut outp
         segment_markers: (!mesh.segment.is_empty()).then_some(&meshed.segment_markers[..]),
         uses_segments: meshed.uses_segments,
     };
-    let numbering = finished.numbering(options.jettison);
+    let numbering = finished.numbering(jettison);
     finished.write(options, &numbering, &mut output);
     // Triangle attributes: with `r` the input triangles' (inherited by their pieces), with `A`
     // (and regions) the region's (0 outside every region).

@@ -9,8 +9,7 @@
 //! lengths, the area per regional attribute, the angle and area bounds, and counts within a
 //! factor. Malformed inputs must fail in both programs.
 //!
-//! Without /usr/bin/triangle the tests print SKIPPED and pass, unless env `CI` is set. Switches
-//! that triangle-rs does not implement yet are reported as GATED until they land.
+//! Without /usr/bin/triangle the tests print SKIPPED and pass, unless env `CI` is set.
 
 mod cli_support;
 
@@ -53,24 +52,19 @@ fn run_both(tag: &str, inputs: &[(&str, &str)], args: &[&str]) -> Option<Pair> {
 }
 
 impl Pair {
-    /// True when the comparison can go on: the reference succeeded, and so did we (or the
-    /// feature is gated).
-    fn both_succeeded(&self, what: &str) -> bool {
+    /// Asserts that both programs succeeded.
+    fn assert_both_succeeded(&self, what: &str) {
         assert!(
             self.reference_run.ok(),
             "{what}: the reference failed:\n{}{}",
             self.reference_run.stdout,
             self.reference_run.stderr
         );
-        if not_supported_yet(&self.our_run, what) {
-            return false;
-        }
         assert!(
             self.our_run.ok(),
             "{what}: triangle-rs failed:\n{}",
             self.our_run.stderr
         );
-        true
     }
 
     /// The output files (inputs excluded); both programs must have written the same ones.
@@ -332,9 +326,7 @@ fn delaunay_of_point_sets_matches_the_reference() {
             let Some(pair) = run_both(base, &[(&name, &text)], &[switches, &name]) else {
                 return;
             };
-            if !pair.both_succeeded(&what) {
-                continue;
-            }
+            pair.assert_both_succeeded(&what);
             if switches.contains('I') {
                 // No .node is written over the input: compare with the input's vertices.
                 let outputs = pair.outputs(&what);
@@ -362,7 +354,7 @@ fn second_iteration_reads_the_first() {
     let Some(pair) = run_both("iter", &[("dots.node", &text)], &["-Q", "dots.node"]) else {
         return;
     };
-    assert!(pair.both_succeeded("-Q dots.node"));
+    pair.assert_both_succeeded("-Q dots.node");
     let second = |dir: &TempDir, program: &std::path::Path| run(program, dir.path(), &["-Qcn", "dots.1.node"]);
     let (r, o) = (
         second(&pair.reference, &reference().unwrap()),
@@ -380,9 +372,7 @@ fn second_order_triangles_match_the_reference() {
         let Some(pair) = run_both(base, &[(&name, &text)], &["-Qo2e", &name]) else {
             return;
         };
-        if !pair.both_succeeded(&what) {
-            continue;
-        }
+        pair.assert_both_succeeded(&what);
         // The midpoints are new vertices whose numbering may differ: compare as sets.
         compare_unique(&pair, &format!("{base}.1"), &what, false);
     }
@@ -401,9 +391,7 @@ fn constrained_delaunay_matches_the_reference() {
             let Some(pair) = run_both(base, &[(&name, &text)], &[switches, &name]) else {
                 return;
             };
-            if !pair.both_succeeded(&what) {
-                continue;
-            }
+            pair.assert_both_succeeded(&what);
             compare_unique(&pair, &format!("{base}.1"), &what, true);
         }
     }
@@ -418,9 +406,8 @@ fn constrained_delaunay_matches_the_reference() {
         let Some(pair) = run_both("separate", &inputs, &[switches, "separate.poly"]) else {
             return;
         };
-        if pair.both_succeeded(&what) {
-            compare_unique(&pair, "separate.1", &what, true);
-        }
+        pair.assert_both_succeeded(&what);
+        compare_unique(&pair, "separate.1", &what, true);
     }
 }
 
@@ -542,9 +529,7 @@ fn quality_meshes_compare_by_measures() {
             let Some(pair) = run_both(base, &[(&name, &text)], &[switches, &name]) else {
                 return;
             };
-            if !pair.both_succeeded(&what) {
-                continue;
-            }
+            pair.assert_both_succeeded(&what);
             compare_refined(&pair, &format!("{base}.1"), &what, min_angle, max_area);
         }
     }
@@ -554,9 +539,8 @@ fn quality_meshes_compare_by_measures() {
     let Some(pair) = run_both("q-points", &[("rand40.node", &text)], &["-Qq", "rand40.node"]) else {
         return;
     };
-    if pair.both_succeeded(what) {
-        compare_refined(&pair, "rand40.1", what, Some(20.0), None);
-    }
+    pair.assert_both_succeeded(what);
+    compare_refined(&pair, "rand40.1", what, Some(20.0), None);
 }
 
 #[test]
@@ -582,9 +566,8 @@ fn refinement_of_a_mesh_matches_the_reference() {
     let Some(pair) = run_both("refine", &inputs, &["-Qre", "dots.1"]) else {
         return;
     };
-    if pair.both_succeeded(what) {
-        compare_unique(&pair, "dots.2", what, true);
-    }
+    pair.assert_both_succeeded(what);
+    compare_unique(&pair, "dots.2", what, true);
     for (switches, min_angle, max_area) in [
         ("-Qrq", Some(20.0), None),
         ("-Qra", None, None),
@@ -594,18 +577,73 @@ fn refinement_of_a_mesh_matches_the_reference() {
         let Some(pair) = run_both("refine", &inputs, &[switches, "dots.1"]) else {
             return;
         };
-        if pair.both_succeeded(&what) {
-            compare_refined(&pair, "dots.2", &what, min_angle, max_area);
-        }
+        pair.assert_both_succeeded(&what);
+        compare_refined(&pair, "dots.2", &what, min_angle, max_area);
     }
     // An .area input name implies -r and -a.
     let what = "-Q dots.1.area";
     let Some(pair) = run_both("refine-area", &inputs, &["-Q", "dots.1.area"]) else {
         return;
     };
-    if pair.both_succeeded(what) {
-        compare_refined(&pair, "dots.2", what, None, None);
+    pair.assert_both_succeeded(what);
+    compare_refined(&pair, "dots.2", what, None, None);
+}
+
+/// `r` with `p`: the mesh of `x.node`/`x.ele` is refined respecting the segments of `x.poly`
+/// (Triangle's own output, without vertices), and the triangles keep their attributes.
+#[test]
+fn refinement_with_segments_reads_the_poly_file() {
+    let Some(reference_program) = reference() else { return };
+    let setup = TempDir::new("refine-p-setup");
+    setup.write("pslg.poly", &data("pslg.poly"));
+    assert!(run(&reference_program, setup.path(), &["-QpA", "pslg.poly"]).ok());
+    let texts: Vec<(String, String)> = ["pslg.1.node", "pslg.1.ele", "pslg.1.poly"]
+        .iter()
+        .map(|name| (name.to_string(), setup.read(name)))
+        .collect();
+    let inputs: Vec<(&str, &str)> = texts.iter().map(|(n, t)| (n.as_str(), t.as_str())).collect();
+    for (switches, min_angle, max_area) in [("-Qrpq", Some(20.0), None), ("-Qrpa0.5", None, Some(0.5))] {
+        let what = format!("{switches} pslg.1");
+        let Some(pair) = run_both("refine-p", &inputs, &[switches, "pslg.1"]) else {
+            return;
+        };
+        pair.assert_both_succeeded(&what);
+        compare_refined(&pair, "pslg.2", &what, min_angle, max_area);
+        let (ours, theirs) = (
+            files::read_poly(&pair.ours.read("pslg.2.poly"), "pslg.2.poly", false).unwrap(),
+            files::read_poly(&pair.reference.read("pslg.2.poly"), "pslg.2.poly", false).unwrap(),
+        );
+        assert_eq!(ours.holes, theirs.holes, "{what}: holes");
     }
+}
+
+/// `r` on a mesh of six-node triangles (`o2`): both programs use the corners and leave the
+/// mid-edge nodes out of the output.
+#[test]
+fn refinement_of_a_second_order_mesh_drops_the_mid_nodes() {
+    let Some(reference_program) = reference() else { return };
+    let setup = TempDir::new("refine-o2-setup");
+    setup.write("pslg.poly", &data("pslg.poly"));
+    assert!(run(&reference_program, setup.path(), &["-Qpo2", "pslg.poly"]).ok());
+    let (node, ele) = (setup.read("pslg.1.node"), setup.read("pslg.1.ele"));
+    let input = files::read_ele(&ele, "pslg.1.ele").unwrap();
+    assert_eq!(input.corners, 6);
+    let inputs = [("pslg.1.node", node.as_str()), ("pslg.1.ele", ele.as_str())];
+    let what = "-Qre pslg.1 (six-node triangles)";
+    let Some(pair) = run_both("refine-o2", &inputs, &["-Qre", "pslg.1"]) else {
+        return;
+    };
+    pair.assert_both_succeeded(what);
+    // Same vertices, line by line: the corners in input order, without the mid-edge nodes.
+    compare_unique(&pair, "pslg.2", what, true);
+    let corners: std::collections::BTreeSet<i32> = input.triangles.chunks_exact(6).flat_map(|t| t[..3].to_vec()).collect();
+    assert_eq!(files::read_node(&pair.ours.read("pslg.2.node"), "n").unwrap().point_count(), corners.len());
+    let what = "-Qrq pslg.1 (six-node triangles)";
+    let Some(pair) = run_both("refine-o2", &inputs, &["-Qrq", "pslg.1"]) else {
+        return;
+    };
+    pair.assert_both_succeeded(what);
+    compare_refined(&pair, "pslg.2", what, Some(20.0), None);
 }
 
 #[test]
@@ -674,9 +712,7 @@ fn verbose_statistics_match_the_reference() {
         let Some(pair) = run_both("verbose", &[(&name, &text)], &["-V", &name]) else {
             return;
         };
-        if !pair.both_succeeded(&what) {
-            continue;
-        }
+        pair.assert_both_succeeded(&what);
         let (o, r) = (&pair.our_run.stdout, &pair.reference_run.stdout);
         assert_eq!(
             histogram(o, "Angles (degrees)", 9),
@@ -720,7 +756,7 @@ fn degenerate_point_sets_agree_on_counts_hull_and_vertices() {
     let Some(pair) = run_both("grid", &[("grid.node", &grid)], &["-Qcevn", "grid.node"]) else {
         return;
     };
-    assert!(pair.both_succeeded("-Qcevn grid.node"));
+    pair.assert_both_succeeded("-Qcevn grid.node");
     for name in pair.outputs("-Qcevn grid.node") {
         assert_eq!(
             header_counts(&pair.ours, &name),
@@ -761,9 +797,7 @@ fn duplicate_vertices_are_reported_and_kept_out_of_the_mesh() {
         let Some(pair) = run_both("dups", &[("dups.node", &text)], &[switches, "dups.node"]) else {
             return;
         };
-        if !pair.both_succeeded(&what) {
-            continue;
-        }
+        pair.assert_both_succeeded(&what);
         // The duplicates' removal keeps the triangulation of the distinct vertices.
         let (o, r) = (
             Results::read(&pair.ours, "dups.1.node"),

@@ -128,14 +128,27 @@ fn run(exe: &Path, detect_leaks: bool) -> Output {
         .expect("run julia_calls")
 }
 
-/// The cases that need only what triangle-rs implements today: they must pass, not be gated.
-const CASES_THAT_MUST_PASS: &[&str] = &[
-    "two points Q -> TriangulateError",
-    "two points, raw call returns 1",
-    "point attributes Q (",
-    "Voronoi diagram vQ",
-    "convex hull segments cQ",
-    "triunsuitable! is callable",
+/// Every case of ctests/julia_calls.c, each of which must print `PASS <case>`: the cases of
+/// Triangulate.jl's test suite (diamond `paAqQ`, T-shaped `pcDQ`, unit square `pqQn` and
+/// `pqo2Q`, two points -> error, point attributes), its example point sets, and the callback.
+const CASES: &[&str] = &[
+    "diamond paAqQ (test_triangulate)",
+    "raw CTriangulateIO paAqQ via triangulate_catch_exit (test_ctriangulate)",
+    "T-shaped PSLG pcDQ, no segment markers (test_triangulate2)",
+    "two points Q -> TriangulateError (test_triangulate_catch_exit)",
+    "two points, raw call returns 1 (test_ctriangulate_catch_exit)",
+    "unit square pqQn (test_neighbors)",
+    "unit square pqQ (test_o2)",
+    "unit square pqo2Q (test_o2)",
+    "point attributes Q (test_pointattributelist)",
+    "point attributes Qa0.05 (test_pointattributelist)",
+    "Voronoi diagram vQ (example_pointsets)",
+    "convex hull segments cQ (example_pointsets)",
+    "triunsuitable! is callable; without u the test is never called",
+    "u with a per-call test (triangulate(...; unsuitable))",
+    "u with the global triunsuitable_callback (Triangulate.jl unchanged)",
+    "u from two threads at once, each with its own test",
+    "an exception in the test cancels the call and is rethrown",
 ];
 
 #[test]
@@ -171,18 +184,11 @@ fn julia_package_calls_work_on_the_library() {
         !stdout.lines().any(|line| line.starts_with("FAIL")),
         "a case failed:\n{stdout}"
     );
-    for case in CASES_THAT_MUST_PASS {
-        assert!(
-            stdout
-                .lines()
-                .any(|line| line.starts_with("PASS ") && line[5..].starts_with(case)),
-            "case `{case}` did not pass:\n{stdout}"
-        );
-    }
-    // Every case reports exactly once: passed, or gated on a switch that is not implemented yet.
-    let reported = stdout
-        .lines()
-        .filter(|line| line.starts_with("PASS ") || line.starts_with("GATED "))
-        .count();
-    assert_eq!(reported, 17, "unexpected case count:\n{stdout}");
+    // Exactly the listed cases passed, each once, and nothing else was reported.
+    let passed: Vec<&str> = stdout.lines().filter_map(|line| line.strip_prefix("PASS ")).collect();
+    assert_eq!(passed, CASES, "not every case passed:\n{stdout}");
+    assert!(
+        stdout.lines().all(|line| line.starts_with("PASS ") || line == "0 failed" || line.is_empty()),
+        "unexpected output:\n{stdout}"
+    );
 }

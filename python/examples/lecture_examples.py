@@ -7,8 +7,8 @@ OUTPUT_DIR defaults to ``results/``. The examples are those of Triangulate.jl's 
 switch strings (0-based indices, as everywhere in triangle_rs): point sets (``Q``, ``cQ``, ``vQ``,
 ``vcDQ``, ``pcQ``) and a domain with a notch (``pQ``, ``pa0.05Q``, ``pa0.05DQ``, ``pa0.05q20Q``,
 local refinement through the unsuitable callback ``pauq20Q``, two regions ``paAq20Q``, a square with
-two square holes). An example whose switches the library does not support yet prints
-``skipped: <message>`` and the run goes on.
+two square holes). An example that fails prints ``failed: <message>``; the others still run, and the
+script exits with status 1.
 """
 
 from __future__ import annotations
@@ -136,13 +136,13 @@ EXAMPLES = [
 
 
 def run_example(example: Example, output_dir: Path, rng: np.random.Generator) -> Optional[Path]:
-    """Runs one example and writes its PNG; returns the path, or ``None`` if the library does
-    not support the example's switches yet."""
+    """Runs one example and writes its PNG; returns the path, or ``None`` (after saying why) if
+    the library refused the example."""
     triin = example.make_input(rng)
     try:
         triout, vorout = triangulate(example.switches, triin, unsuitable=example.unsuitable)
     except TriangulateError as error:
-        print(f"{example.name} ({example.switches}): skipped: {error}")
+        print(f"{example.name} ({example.switches}): failed: {error}")
         return None
     figure = plot_in_out(
         triin,
@@ -169,16 +169,16 @@ def main(argv: Optional[list[str]] = None) -> int:
     output_dir = Path(args.output_dir)
     output_dir.mkdir(parents=True, exist_ok=True)
     rng = np.random.default_rng(args.seed)
-    written = skipped = 0
+    written = failed = 0
     for example in EXAMPLES:
         if args.only and example.name not in args.only:
             continue
         if run_example(example, output_dir, rng) is None:
-            skipped += 1
+            failed += 1
         else:
             written += 1
-    print(f"{written} PNGs written to {output_dir}, {skipped} examples skipped (library: {triangle_rs.library_path()})")
-    return 0
+    print(f"{written} PNGs written to {output_dir}, {failed} examples failed (library: {triangle_rs.library_path()})")
+    return 1 if failed else 0
 
 
 if __name__ == "__main__":

@@ -1,35 +1,11 @@
-"""Shared checks: gating of features the library does not support yet, and geometric validity
-of triangulations (results are compared as sets: triangle-rs does not reproduce Triangle's
-element order)."""
+"""Shared checks: geometric validity of triangulations (results are compared as sets: triangle-rs
+does not reproduce Triangle's element order)."""
 
 from __future__ import annotations
 
-from typing import Any, Callable, Iterable
+from typing import Iterable
 
 import numpy as np
-import pytest
-
-from triangle_rs import TriangulateError
-
-NOT_SUPPORTED_YET = "not supported yet"
-
-
-def call_or_skip(function: Callable[..., Any], *args: Any, **kwargs: Any) -> Any:
-    """Calls ``function``; if the library answers that a switch is not supported yet, asserts
-    that this is the clear "not supported yet" error and skips the rest of the test. Once the
-    feature lands, the call succeeds and the test asserts the real thing."""
-    try:
-        return function(*args, **kwargs)
-    except TriangulateError as error:
-        assert NOT_SUPPORTED_YET in str(error), f"unexpected error: {error}"
-        pytest.skip(f"gated until the library supports it: {error}")
-
-
-def skip_if_not_supported(error: BaseException) -> None:
-    """For tests that expect an exception: a "not supported yet" TriangulateError means the
-    feature has not landed (skip); anything else is returned to the test to check."""
-    if isinstance(error, TriangulateError) and NOT_SUPPORTED_YET in str(error):
-        pytest.skip(f"gated until the library supports it: {error}")
 
 
 def signed_areas(points: np.ndarray, triangles: np.ndarray) -> np.ndarray:

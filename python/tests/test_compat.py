@@ -6,7 +6,7 @@ import pytest
 
 import triangle_rs as triangle
 
-from helpers import call_or_skip, canonical_triangles, signed_areas, undirected
+from helpers import canonical_triangles, signed_areas, undirected
 
 SQUARE = [[0, 0], [0, 1], [1, 1], [1, 0]]
 FIVE_POINTS = [[0, 0], [0, 1], [0.5, 0.5], [1, 1], [1, 0]]
@@ -62,7 +62,7 @@ def test_triangulate_square_with_maximum_area():
     # The PyPI package's test_triangulate: 'a0.2' on the square. Triangle gives the centre and
     # the four edge midpoints; triangle-rs may place its Steiner points elsewhere, so check what
     # the switch promises.
-    out = call_or_skip(triangle.triangulate, {"vertices": SQUARE}, "a0.2")
+    out = triangle.triangulate({"vertices": SQUARE}, "a0.2")
     areas = signed_areas(out["vertices"], out["triangles"])
     assert np.all(areas > 0) and np.all(areas <= 0.2 + 1e-12) and np.isclose(areas.sum(), 1.0)
     assert out["vertices"][:4].tolist() == SQUARE
@@ -78,7 +78,7 @@ def test_pslg_with_hole_and_regions_keys():
         "holes": [[1.5, 1.5]],
         "regions": [[0.5, 0.5, 3.0, 0.0]],
     }
-    out = call_or_skip(triangle.triangulate, tri, "pA")
+    out = triangle.triangulate(tri, "pA")
     assert out["holes"].tolist() == [[1.5, 1.5]]
     assert out["regions"].shape == (1, 4)
     assert out["triangle_attributes"].shape == (len(out["triangles"]), 1)
@@ -105,3 +105,26 @@ def test_existing_code_runs_with_the_import_changed():
     B = tr.triangulate(A)
     assert len(B["triangles"]) == 2
     assert isinstance(tr.delaunay(np.array(FIVE_POINTS)), np.ndarray)
+
+
+def test_refinement_with_per_triangle_maximum_areas():
+    # The PyPI package's `ra` with `triangle_max_area` (one bound per input triangle; negative:
+    # none): triangles inside the bounded input triangle obey its bound.
+    first = triangle.triangulate({"vertices": SQUARE})
+    assert first["triangles"].shape == (2, 3)
+    tri = {"vertices": first["vertices"], "triangles": first["triangles"], "triangle_max_area": [0.02, -1.0]}
+    out = triangle.triangulate(tri, "ra")
+    areas = signed_areas(out["vertices"], out["triangles"])
+    assert np.all(areas > 0) and np.isclose(areas.sum(), 1.0)
+    bounded = first["vertices"][first["triangles"][0]]
+    centroids = out["vertices"][out["triangles"]].mean(axis=1)
+
+    def inside(p):
+        a, b, c = bounded
+        cross = lambda u, v, w: (v[0] - u[0]) * (w[1] - u[1]) - (v[1] - u[1]) * (w[0] - u[0])  # noqa: E731
+        return cross(a, b, p) > 0 and cross(b, c, p) > 0 and cross(c, a, p) > 0
+
+    in_bounded = np.array([inside(p) for p in centroids])
+    assert in_bounded.sum() >= 0.5 / 0.02
+    assert np.all(areas[in_bounded] <= 0.02 + 1e-12)
+    assert len(out["triangles"]) > len(first["triangles"])

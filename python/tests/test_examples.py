@@ -9,14 +9,13 @@ from pathlib import Path
 import numpy as np
 from matplotlib.image import imread
 
+import triangle_rs
+
 PYTHON_DIR = Path(__file__).resolve().parent.parent
 SCRIPT = PYTHON_DIR / "examples" / "lecture_examples.py"
 
 sys.path.insert(0, str(SCRIPT.parent))
 import lecture_examples  # noqa: E402
-
-#: These need only the Delaunay engine: they must always produce a picture.
-POINT_SET_EXAMPLES = {"convex_hull", "convex_hull_with_boundary", "convex_hull_voronoi"}
 
 
 def test_the_examples_cover_the_lecture():
@@ -37,7 +36,26 @@ def test_local_refinement_test_is_finer_near_the_centre():
     assert not unsuitable(*far, 0.005)
 
 
-def test_script_writes_one_png_per_supported_example(tmp_path):
+def test_local_refinement_example_is_finer_near_the_centre():
+    example = next(e for e in lecture_examples.EXAMPLES if e.name == "domain_localref")
+    triin = example.make_input(np.random.default_rng(0))
+    out, _ = triangle_rs.triangulate(example.switches, triin, unsuitable=example.unsuitable)
+    corners = out.pointlist[out.trianglelist[:, :3]]
+    centroids = corners.mean(axis=1)
+    areas = 0.5 * np.abs(
+        (corners[:, 1, 0] - corners[:, 0, 0]) * (corners[:, 2, 1] - corners[:, 0, 1])
+        - (corners[:, 1, 1] - corners[:, 0, 1]) * (corners[:, 2, 0] - corners[:, 0, 0])
+    )
+    distance = np.hypot(centroids[:, 0] - 0.8, centroids[:, 1] - 0.6)
+    near, far = areas[distance < 0.1], areas[distance > 0.4]
+    assert len(near) > 0 and len(far) > 0
+    assert near.max() < far.mean() / 10, (near.max(), far.mean())
+    # The callback's rule holds for every output triangle (the refinement ran to the end).
+    for c, area in zip(corners, areas):
+        assert not example.unsuitable(*c.reshape(-1), area)
+
+
+def test_script_writes_one_png_per_example(tmp_path):
     env = {**os.environ, "PYTHONPATH": str(PYTHON_DIR), "MPLBACKEND": "Agg"}
     result = subprocess.run(
         [sys.executable, str(SCRIPT), str(tmp_path / "results")],
@@ -46,18 +64,24 @@ def test_script_writes_one_png_per_supported_example(tmp_path):
         text=True,
         timeout=600,
     )
-    assert result.returncode == 0, result.stderr
+    assert result.returncode == 0, result.stdout + result.stderr
     lines = {line.split(" ", 1)[0]: line for line in result.stdout.splitlines()}
     for example in lecture_examples.EXAMPLES:
         line = lines[example.name]
         png = tmp_path / "results" / f"{example.name}.png"
-        if "skipped:" in line:
-            # Only a switch the library does not support yet may skip an example.
-            assert example.name not in POINT_SET_EXAMPLES, line
-            assert re.search(r"skipped: .*not supported yet", line), line
-            assert not png.exists()
-        else:
-            assert png.stat().st_size > 10_000, line
-            image = imread(png)
-            assert (image[..., :3].sum(axis=2) < 2.0).mean() > 0.005, f"{png} looks blank"
-    assert re.search(r"^\d+ PNGs written", result.stdout.splitlines()[-1])
+        assert "failed:" not in line and line.endswith(str(png)), line
+        assert png.stat().st_size > 10_000, line
+        image = imread(png)
+        assert (image[..., :3].sum(axis=2) < 2.0).mean() > 0.005, f"{png} looks blank"
+    assert sorted(p.name for p in (tmp_path / "results").iterdir()) == sorted(
+        f"{e.name}.png" for e in lecture_examples.EXAMPLES
+    )
+    assert re.search(rf"^{len(lecture_examples.EXAMPLES)} PNGs written .*, 0 examples failed", result.stdout.splitlines()[-1])
+
+
+def test_script_exits_with_an_error_when_an_example_fails(tmp_path, monkeypatch, capsys):
+    broken = lecture_examples.EXAMPLES[0]._replace(switches="Qa0")  # a0: refused by the library
+    monkeypatch.setattr(lecture_examples, "EXAMPLES", [broken])
+    assert lecture_examples.main([str(tmp_path)]) == 1
+    assert "failed:" in capsys.readouterr().out
+    assert not list(tmp_path.iterdir())

@@ -5,7 +5,7 @@ import pytest
 
 from triangle_rs import MeshResult, TriangulateIO, mesh, mesh_switches, triangulate
 
-from helpers import call_or_skip, canonical_triangles, random_points, signed_areas
+from helpers import canonical_triangles, random_points, signed_areas
 
 
 def test_switches_for_the_issue_example():
@@ -63,9 +63,7 @@ def test_domain_with_hole_quality_and_area():
     outer = [[0, 0], [1, 0], [1, 1], [0, 1]]
     inner = [[0.4, 0.4], [0.6, 0.4], [0.6, 0.6], [0.4, 0.6]]
     loop = lambda k: [[k + i, k + (i + 1) % 4] for i in range(4)]  # noqa: E731
-    out, _ = call_or_skip(
-        mesh, outer + inner, segments=loop(0) + loop(4), holes=[[0.5, 0.5]], min_angle=25, max_area=0.01
-    )
+    out, _ = mesh(outer + inner, segments=loop(0) + loop(4), holes=[[0.5, 0.5]], min_angle=25, max_area=0.01)
     areas = signed_areas(out.pointlist, out.trianglelist)
     assert np.all(areas > 0) and np.all(areas <= 0.01 + 1e-12)
     assert np.isclose(areas.sum(), 1 - 0.04)
@@ -80,7 +78,7 @@ def test_domain_with_hole_quality_and_area():
 def test_regions_get_their_attributes():
     points = [[0, 0], [0.5, 0], [1, 0], [1, 1], [0.6, 0.6], [0, 1]]
     segments = [[0, 1], [1, 2], [2, 3], [3, 4], [4, 5], [5, 0], [1, 4]]
-    out, _ = call_or_skip(mesh, points, segments=segments, regions=[[0.2, 0.2, 1.0, 0.01], [0.8, 0.2, 2.0, 0.05]])
+    out, _ = mesh(points, segments=segments, regions=[[0.2, 0.2, 1.0, 0.01], [0.8, 0.2, 2.0, 0.05]])
     attributes = out.triangleattributelist[:, 0]
     assert set(attributes.tolist()) == {1.0, 2.0}
     areas = signed_areas(out.pointlist, out.trianglelist)

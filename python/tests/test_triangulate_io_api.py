@@ -8,7 +8,6 @@ from triangle_rs import TriangulateError, TriangulateIO, triangulate
 
 from helpers import (
     assert_delaunay_of_points,
-    call_or_skip,
     canonical_triangles,
     convex_hull_area,
     random_points,
@@ -137,7 +136,7 @@ def test_every_algorithm_gives_the_same_triangles():
 def test_exponent_in_switches_is_a_number():
     # Triangle would read "a1e-2" as area 1 plus the `e` switch; triangle-rs reads 0.01.
     tio = TriangulateIO(pointlist=[[0, 0], [1, 0], [1, 1], [0, 1]])
-    out, _ = call_or_skip(triangulate, "Qa1e-2", tio)
+    out, _ = triangulate("Qa1e-2", tio)
     assert out.edgelist.size == 0
     assert np.all(signed_areas(out.pointlist, out.trianglelist) <= 0.01 + 1e-12)
 
@@ -148,7 +147,7 @@ def test_segments_need_p_and_describe_a_domain():
         segmentlist=[[0, 1], [1, 2], [2, 3], [3, 4], [4, 0]],
         segmentmarkerlist=[1, 2, 3, 4, 5],
     )
-    out, _ = call_or_skip(triangulate, "pQ", tio)
+    out, _ = triangulate("pQ", tio)
     assert out.numberoftriangles == 3
     assert np.isclose(signed_areas(out.pointlist, out.trianglelist).sum(), 1 - 0.5 * 0.4)
     assert {tuple(sorted(s)): m for s, m in zip(out.segmentlist.tolist(), out.segmentmarkerlist)} == {
@@ -163,7 +162,7 @@ def test_holes_and_regions_are_copied_back_with_p():
         holelist=[[1.5, 1.5]],
         regionlist=[[0.5, 0.5, 7.0, -1.0]],
     )
-    out, _ = call_or_skip(triangulate, "pAQ", tio)
+    out, _ = triangulate("pAQ", tio)
     assert out.holelist.tolist() == [[1.5, 1.5]]
     assert out.regionlist.tolist() == [[0.5, 0.5, 7.0, -1.0]]
     assert np.isclose(signed_areas(out.pointlist, out.trianglelist).sum(), 9 - 1)
@@ -172,7 +171,7 @@ def test_holes_and_regions_are_copied_back_with_p():
 
 def test_quadratic_triangles_have_six_nodes():
     points = random_points(seed=8, n=12)
-    out, _ = call_or_skip(triangulate, "Qo2", TriangulateIO(pointlist=points))
+    out, _ = triangulate("Qo2", TriangulateIO(pointlist=points))
     assert out.trianglelist.shape[1] == 6
     corners = out.pointlist[out.trianglelist[:, :3]]
     for i in range(3):
@@ -184,7 +183,7 @@ def test_quadratic_triangles_have_six_nodes():
 def test_refining_a_mesh():
     square = TriangulateIO(pointlist=[[0, 0], [1, 0], [1, 1], [0, 1]])
     first, _ = triangulate("Q", square)
-    out, _ = call_or_skip(triangulate, "rQa0.05", first)
+    out, _ = triangulate("rQa0.05", first)
     assert np.all(signed_areas(out.pointlist, out.trianglelist) <= 0.05 + 1e-12)
     assert np.isclose(signed_areas(out.pointlist, out.trianglelist).sum(), 1.0)
 
@@ -214,3 +213,17 @@ def test_arguments_are_checked():
         triangle_rs.core.triangulate("Q", SQUARE_AND_CENTRE)
     with pytest.raises(ValueError, match="switch 'u'"):
         triangulate("Q", tio, unsuitable=lambda *args: False)
+
+
+def test_refining_second_order_triangles_drops_their_mid_nodes():
+    # As Triangle: `r` on six-node triangles uses their corners and leaves the mid-edge nodes out.
+    points = random_points(seed=8, n=12)
+    o2, _ = triangulate("Qo2", TriangulateIO(pointlist=points))
+    assert o2.trianglelist.shape[1] == 6 and o2.numberofpoints > 12
+    out, _ = triangulate("rQ", o2)
+    assert out.numberofpoints == 12 and out.pointlist.tolist() == points.tolist()
+    assert canonical_triangles(out.trianglelist) == canonical_triangles(o2.trianglelist[:, :3])
+    refined, _ = triangulate("rQa0.01", o2)
+    assert np.all(signed_areas(refined.pointlist, refined.trianglelist) <= 0.01 + 1e-12)
+    # No leftover mid-edge node: every output point is a corner of some triangle.
+    assert set(refined.trianglelist.ravel().tolist()) == set(range(refined.numberofpoints))

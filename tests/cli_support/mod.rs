@@ -105,16 +105,6 @@ pub fn data(name: &str) -> String {
     std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("read {}: {e}", path.display()))
 }
 
-/// True (after saying so) when our run failed because a switch is not implemented yet: tests of
-/// later features pass while the feature is missing and assert the real thing once it lands.
-pub fn not_supported_yet(run: &Run, what: &str) -> bool {
-    if !run.ok() && run.stderr.contains("not supported yet") {
-        eprintln!("GATED ({what}): {}", run.stderr.trim());
-        return true;
-    }
-    false
-}
-
 /// A deterministic pseudo-random generator (64-bit LCG), so inputs are the same on every run.
 pub struct Lcg(u64);
 
