@@ -8,8 +8,7 @@
  * `basic loud` makes one failing call without `Q` instead: Triangle reports errors even then, and
  * the test checks that something was printed.
  *
- * Exit codes: 0 all checks passed, 1 a check failed (described on stdout), 77 the engine does not
- * triangulate yet ("not supported yet"): only the error paths were checked. */
+ * Exit codes: 0 all checks passed, 1 a check failed (described on stdout). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -240,19 +239,14 @@ static void check_full_output(const struct triangulateio *out, const struct tria
     }
 }
 
-static int engine_is_missing(void) {
-    return strstr(triangulate_last_error(), "not supported yet") != NULL;
-}
-
-/* A full call with every output; returns 0 if the engine says it cannot triangulate yet. */
-static int full_call(const char *switches, int base) {
+/* A full call with every output. */
+static void full_call(const char *switches, int base) {
     struct triangulateio in, out, vor;
     int rc;
     make_input(&in);
     memset(&out, 0, sizeof out);
     memset(&vor, 0, sizeof vor);
     rc = triangulate(switches, &in, &out, &vor);
-    if (rc != 0 && engine_is_missing()) return 0;
     CHECK(rc == 0, "triangulate(\"%s\") returned %d: %s", switches, rc, triangulate_last_error());
     CHECK(strcmp(triangulate_last_error(), "") == 0, "last error after a success: %s",
           triangulate_last_error());
@@ -314,13 +308,13 @@ static void caller_buffers(void) {
     free_all(&out);
 }
 
-static void catch_exit(int engine_works) {
+static void catch_exit(void) {
     struct triangulateio in, out;
     int rc;
     make_input(&in);
     memset(&out, 0, sizeof out);
     rc = triangulate_catch_exit("zQ", &in, &out, NULL);
-    if (engine_works) CHECK(rc == 0, "triangulate_catch_exit success returned %d", rc);
+    CHECK(rc == 0, "triangulate_catch_exit success returned %d", rc);
     free_all(&out);
     in.numberofpoints = 2;
     rc = triangulate_catch_exit("zQ", &in, &out, NULL);
@@ -356,7 +350,7 @@ static void expect_error(const char *what, const char *switches, struct triangul
     free_all(&vor);
 }
 
-static void error_paths(int engine_works) {
+static void error_paths(void) {
     struct triangulateio in;
     double bad[2 * NPOINTS];
     int i;
@@ -381,26 +375,25 @@ static void error_paths(int engine_works) {
     in.pointattributelist = NULL;
     expect_error("NULL pointattributelist", "zQ", &in, 1, 1, "pointattributelist", 1);
 
-    /* The checks below live in the engine: before it lands they fail as "not supported yet". */
     for (i = 0; i < 2 * NPOINTS; i++) bad[i] = points[i];
     bad[7] = NAN;
     make_input(&in);
     in.pointlist = bad;
-    expect_error("NaN coordinate", "zQ", &in, 1, 1, "finite", engine_works);
+    expect_error("NaN coordinate", "zQ", &in, 1, 1, "finite", 1);
     bad[7] = points[7];
     bad[10] = -INFINITY;
-    expect_error("infinite coordinate", "zQ", &in, 1, 1, "finite", engine_works);
+    expect_error("infinite coordinate", "zQ", &in, 1, 1, "finite", 1);
     make_input(&in);
     in.numberofpoints = 2;
-    expect_error("two points", "zQ", &in, 1, 1, "three", engine_works);
+    expect_error("two points", "zQ", &in, 1, 1, "three", 1);
     in.numberofpoints = 0;
-    expect_error("no points", "zQ", &in, 1, 1, "three", engine_works);
+    expect_error("no points", "zQ", &in, 1, 1, "three", 1);
     make_input(&in);
     expect_error("a0", "za0Q", &in, 1, 1, "area", 1);
     expect_error("a0.0", "za0.0Q", &in, 1, 1, "area", 1);
 
     /* A success after failures clears the message. */
-    if (engine_works) {
+    {
         struct triangulateio out;
         memset(&out, 0, sizeof out);
         make_input(&in);
@@ -411,7 +404,6 @@ static void error_paths(int engine_works) {
 }
 
 int main(int argc, char **argv) {
-    int engine_works;
     if (argc > 1 && strcmp(argv[1], "loud") == 0) {
         struct triangulateio in;
         make_input(&in);
@@ -419,16 +411,14 @@ int main(int argc, char **argv) {
         /* Without Q the error must be reported on stdout or stderr. */
         return triangulate("z", &in, NULL, NULL) != 0 ? 0 : 1;
     }
-    engine_works = full_call("zcenvQ", 0);
-    if (engine_works) {
-        full_call("cenvQ", 1);
-        caller_buffers();
-    }
-    catch_exit(engine_works);
-    error_paths(engine_works);
+    full_call("zcenvQ", 0);
+    full_call("cenvQ", 1);
+    caller_buffers();
+    catch_exit();
+    error_paths();
     if (failures) {
         printf("%d check(s) failed\n", failures);
         return 1;
     }
-    return engine_works ? 0 : 77;
+    return 0;
 }

@@ -3,10 +3,7 @@
  * state), on the calling thread. Also checks Triangulate.jl's global `triunsuitable_callback`
  * and the cancel flag.
  *
- * Parts that need a switch the engine does not support yet (`u`) print "SKIP: ..." and are not
- * counted; they start asserting once the switch lands.
- * Exit codes: 0 passed (possibly with SKIP lines), 1 a check failed, 77 the engine does not
- * triangulate yet. */
+ * Exit codes: 0 passed, 1 a check failed. */
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -28,10 +25,6 @@ static pthread_mutex_t failures_lock = PTHREAD_MUTEX_INITIALIZER;
             pthread_mutex_unlock(&failures_lock);                                                 \
         }                                                                                         \
     } while (0)
-
-static int not_supported(const char *message) {
-    return strstr(message, "not supported yet") != NULL;
-}
 
 static void free_all(struct triangulateio *io) {
     trifree(io->pointlist);
@@ -136,8 +129,7 @@ static void *plain_thread(void *arg) {
     return NULL;
 }
 
-/* Returns 0 when the engine cannot triangulate yet. */
-static int concurrent_plain(void) {
+static void concurrent_plain(void) {
     struct plain_job jobs[2] = {{1500, NULL, NULL, 0, 8, ""}, {2500, NULL, NULL, 0, 5, ""}};
     pthread_t threads[2];
     int j;
@@ -145,12 +137,11 @@ static int concurrent_plain(void) {
         jobs[j].points = random_points(jobs[j].npoints, 1000 + (unsigned long long)j);
         if (triangulate_canonical(&jobs[j], &jobs[j].expected, &jobs[j].expected_count,
                                   jobs[j].error) != 0) {
-            int missing = not_supported(jobs[j].error);
-            CHECK(missing, "serial call failed: %s", jobs[j].error);
+            CHECK(0, "serial call failed: %s", jobs[j].error);
             free(jobs[0].points);
             free(jobs[1].points);
             trifree(jobs[0].expected);
-            return 0;
+            return;
         }
     }
     for (j = 0; j < 2; j++) pthread_create(&threads[j], NULL, plain_thread, &jobs[j]);
@@ -159,7 +150,6 @@ static int concurrent_plain(void) {
         free(jobs[j].points);
         trifree(jobs[j].expected);
     }
-    return 1;
 }
 
 /* ---- Part 2: per-call callbacks and user_data (`u`). ---- */
@@ -246,10 +236,6 @@ static void concurrent_callbacks(void) {
     pthread_create(&job_b.handle, NULL, refine_thread, &job_b);
     pthread_join(job_a.handle, NULL);
     pthread_join(job_b.handle, NULL);
-    if (job_a.rc != 0 && not_supported(job_a.error)) {
-        printf("SKIP: per-call callbacks: %s\n", job_a.error);
-        return;
-    }
     CHECK(job_a.rc == 0 && job_b.rc == 0, "u failed: %s / %s", job_a.error, job_b.error);
     CHECK(job_a.foreign_calls == 0 && job_b.foreign_calls == 0,
           "a callback got another call's user_data or ran on another thread (%ld, %ld)",
@@ -286,11 +272,6 @@ static void global_callback(void) {
     triunsuitable_callback(global_unsuitable);
     rc = triangulate("zQu", &in, &out, NULL);
     triunsuitable_callback(NULL);
-    if (rc != 0 && not_supported(triangulate_last_error())) {
-        printf("SKIP: global callback: %s\n", triangulate_last_error());
-        free_all(&out);
-        return;
-    }
     CHECK(rc == 0, "global callback: %s", triangulate_last_error());
     CHECK(global_calls > 0, "the global callback was not called");
     if (rc == 0) {
@@ -323,11 +304,6 @@ static void cancelled(void) {
     in.pointlist = square;
     in.numberofpoints = 6;
     rc = triangulate_reentrant("zQu", &in, &out, NULL, always_unsuitable, &calls, &cancel);
-    if (rc != 0 && not_supported(triangulate_last_error())) {
-        printf("SKIP: cancel: %s\n", triangulate_last_error());
-        free_all(&out);
-        return;
-    }
     CHECK(calls < CANCEL_CALL_LIMIT, "the cancel flag was ignored (%ld callback calls)", calls);
     if (rc == 0) {
         CHECK(out.numberoftriangles > 0 && out.trianglelist != NULL, "cancelled: no mesh");
@@ -339,10 +315,7 @@ static void cancelled(void) {
 }
 
 int main(void) {
-    if (!concurrent_plain()) {
-        printf("SKIP: the engine does not triangulate yet\n");
-        return failures ? 1 : 77;
-    }
+    concurrent_plain();
     concurrent_callbacks();
     global_callback();
     cancelled();

@@ -9,7 +9,6 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::sync::OnceLock;
 
-const EXIT_SKIP: i32 = 77;
 
 fn manifest_dir() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -142,18 +141,8 @@ fn describe(output: &Output) -> String {
     )
 }
 
-/// Exit 0 passes; exit 77 means "the engine does not triangulate yet" and is accepted only while
-/// that is true (asserted through the Rust API, so it cannot hide a regression).
+/// Exit 0 passes.
 fn assert_passed(name: &str, output: &Output) {
-    if output.status.code() == Some(EXIT_SKIP) {
-        assert!(
-            common::engine_is_missing(),
-            "{name} says the engine is missing, but triangle_rs::triangulate works:\n{}",
-            describe(output)
-        );
-        eprintln!("{name}: skipped, the engine does not triangulate yet");
-        return;
-    }
     assert!(
         output.status.success(),
         "{name} failed:\n{}",

@@ -17,10 +17,3 @@ pub mod timing;
 pub use call::{ours, ours_with, MeshInput, Triangulation};
 #[allow(unused_imports)]
 pub use reference::{reference, reference_missing};
-
-/// True while `triangle_rs::triangulate` cannot triangulate a plain point set yet ("not
-/// supported yet"): the C programs may skip then, and only then.
-pub fn engine_is_missing() -> bool {
-    let input = MeshInput::from_points(vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]);
-    matches!(ours("zQ", &input), Err(message) if message.contains("not supported yet"))
-}
