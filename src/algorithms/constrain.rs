@@ -103,18 +103,32 @@ struct Scratch {
     inner_links: Vec<(u32, u32, u32)>,
 }
 
-/// A polygon of the cavity: its vertices in order and, per consecutive pair `(v[i], v[i+1])`,
-/// the half-edge from `v[i]` to `v[i+1]` that stays (outside the cavity, across its boundary).
+/// A polygon of the cavity: its vertices in order (and their positions, contiguous for the
+/// circle tests) and, per consecutive pair `(v[i], v[i+1])`, the half-edge from `v[i]` to
+/// `v[i+1]` that stays (outside the cavity, across its boundary).
 #[derive(Default)]
 struct Chain {
     vertices: Vec<u32>,
+    points: Vec<Point>,
     outer: Vec<u32>,
 }
 
 impl Chain {
     fn clear(&mut self) {
         self.vertices.clear();
+        self.points.clear();
         self.outer.clear();
+    }
+
+    fn push(&mut self, vertex: u32, point: Point) {
+        self.vertices.push(vertex);
+        self.points.push(point);
+    }
+
+    fn reverse(&mut self) {
+        self.vertices.reverse();
+        self.points.reverse();
+        self.outer.reverse();
     }
 }
 
@@ -393,28 +407,31 @@ impl<P: Predicates> Constrainer<P> {
         slots.clear();
         let h1 = crossed[0];
         slots.push(triangle_of(h1));
-        left.vertices.extend_from_slice(&[a, mesh.dest(h1)]);
+        let (pa, l1, r1) = (mesh.point(a), mesh.dest(h1), mesh.origin(h1));
+        left.push(a, pa);
+        left.push(l1, mesh.point(l1));
         left.outer.push(mesh.twin(next(h1))); // a → l1
-        right.vertices.extend_from_slice(&[a, mesh.origin(h1)]);
+        right.push(a, pa);
+        right.push(r1, mesh.point(r1));
         right.outer.push(mesh.twin(prev(h1))); // r1 → a
         for i in 0..k {
             let f = mesh.twin(crossed[i]); // left → right, in the next triangle of the cavity
             slots.push(triangle_of(f));
             let z = mesh.apex(f);
+            let pz = mesh.point(z);
             let last = i + 1 == k;
             // The next crossed edge is right → z when z is on the left, z → left otherwise.
             if last || crossed[i + 1] == next(f) {
-                left.vertices.push(z);
+                left.push(z, pz);
                 left.outer.push(mesh.twin(prev(f))); // left → z
             }
             if last || crossed[i + 1] == prev(f) {
-                right.vertices.push(z);
+                right.push(z, pz);
                 right.outer.push(mesh.twin(next(f))); // z → right
             }
         }
         debug_assert!(*left.vertices.last().unwrap() == b && *right.vertices.last().unwrap() == b);
-        right.vertices.reverse();
-        right.outer.reverse();
+        right.reverse();
         // The union of the crossed triangles need not be a simple polygon: the segment can leave
         // the star of a vertex and enter it again, so a chain may visit a vertex twice, and an
         // edge between two crossed triangles that the segment does not cross lies on a chain
@@ -449,18 +466,10 @@ impl<P: Predicates> Constrainer<P> {
                 }
                 continue;
             }
-            let v = &chain.vertices;
-            let (u, w) = (mesh.point(v[first as usize]), mesh.point(v[last as usize]));
-            let mut apex = first + 1;
-            let mut pc = mesh.point(v[apex as usize]);
-            for i in first + 2..last {
-                let pi = mesh.point(v[i as usize]);
-                if P::incircle(u, w, pc, pi) > 0.0 {
-                    apex = i;
-                    pc = pi;
-                }
-            }
-            if P::orient2d(u, w, pc) <= 0.0 {
+            let (v, points) = (&chain.vertices, &chain.points);
+            let (u, w) = (points[first as usize], points[last as usize]);
+            let apex = first + 1 + P::smallest_circle(u, w, &points[first as usize + 1..last as usize]) as u32;
+            if P::orient2d(u, w, points[apex as usize]) <= 0.0 {
                 return false;
             }
             let t = slots[triangles.len()];
