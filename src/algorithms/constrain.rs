@@ -287,21 +287,40 @@ impl<P: Predicates> Constrainer<P> {
         self.scratch.crossed.clear();
         let mesh = &self.inserter.mesh;
         let (pa, pb) = (self.pt(a), self.pt(b));
-        // Find the triangle (a, x, y) around `a` whose wedge holds the direction to `b`.
         let start = mesh.vertex_edge[a as usize];
+        // Often the segment is an edge already (a polygon's sides between close vertices): look
+        // for `b` among the neighbours first, which needs no point and no predicate. (Then no
+        // other neighbour lies on the ray to `b` and no wedge strictly contains it, so the search
+        // below would find the same edge.)
         let mut e = start;
+        loop {
+            if mesh.dest(e) == b {
+                return Walk::Along(e);
+            }
+            e = mesh.twin(prev(e));
+            if e == start {
+                break;
+            }
+        }
+        // Find the triangle (a, x, y) around `a` whose wedge holds the direction to `b`. Each
+        // wedge's `y` is the next one's `x`: its orientation is carried over.
         let (mut right, mut left);
+        let mut carried = (GHOST, 0.0);
         loop {
             let (x, y) = (mesh.dest(e), mesh.apex(e));
             if x != GHOST {
-                let ox = P::orient2d(pa, self.pt(x), pb);
+                let ox = if carried.0 == x { carried.1 } else { P::orient2d(pa, self.pt(x), pb) };
                 if ox == 0.0 && along(pa, self.pt(x), pb) {
                     return Walk::Along(e);
                 }
-                if y != GHOST && ox > 0.0 && P::orient2d(pa, self.pt(y), pb) < 0.0 {
-                    right = x;
-                    left = y;
-                    break;
+                if y != GHOST && ox > 0.0 {
+                    let oy = P::orient2d(pa, self.pt(y), pb);
+                    if oy < 0.0 {
+                        right = x;
+                        left = y;
+                        break;
+                    }
+                    carried = (y, oy);
                 }
             }
             e = mesh.twin(prev(e));
