@@ -141,15 +141,6 @@ impl FinishedMesh<'_> {
     fn vertex_markers(&self, numbering: &Numbering) -> Vec<i32> {
         let n = self.mesh.points.len();
         let mut first_segment = vec![NONE; n];
-        if let Some(markers) = self.segment_markers {
-            for e in 0..self.mesh.corners.len() as u32 {
-                let id = self.mesh.segment_of(e);
-                let v = self.mesh.origin(e);
-                if id != NONE && markers[id as usize] != 0 && v != GHOST && id < first_segment[v as usize] {
-                    first_segment[v as usize] = id;
-                }
-            }
-        }
         // On the boundary: an edge of the mesh with the outside on one side, or (as Triangle marks
         // them before eating triangles) a piece of a segment on the convex hull.
         let mut on_boundary = vec![false; n];
@@ -157,10 +148,18 @@ impl FinishedMesh<'_> {
             on_boundary[self.mesh.origin(e) as usize] = true;
             on_boundary[self.mesh.dest(e) as usize] = true;
         }
-        if self.segment_markers.is_some() {
-            for e in 0..self.mesh.corners.len() as u32 {
+        if let Some(markers) = self.segment_markers {
+            // One pass over the segment ids; only half-edges on segments are looked at further.
+            for (e, &id) in self.mesh.segment.iter().enumerate() {
+                if id == NONE {
+                    continue;
+                }
+                let e = e as u32;
                 let (a, b) = (self.mesh.origin(e), self.mesh.dest(e));
-                if a != GHOST && b != GHOST && self.mesh.is_segment(e) && self.mesh.apex(e) == GHOST {
+                if markers[id as usize] != 0 && a != GHOST && id < first_segment[a as usize] {
+                    first_segment[a as usize] = id;
+                }
+                if a != GHOST && b != GHOST && self.mesh.apex(e) == GHOST {
                     on_boundary[a as usize] = true;
                     on_boundary[b as usize] = true;
                 }
