@@ -405,8 +405,10 @@ impl<P: Predicates> Constrainer<P> {
     /// Replaces the triangles that the segment `a`–`b` crosses (the edges in
     /// `self.scratch.crossed`, which must be the complete list from `a` to `b`) by the constrained
     /// Delaunay triangulations of the two polygons the segment cuts their union into, and marks
-    /// the segment's edge as segment `id`. Returns false, changing nothing, if a new triangle would
-    /// not be counter-clockwise (possible only with inexact predicates) or triangles are tagged.
+    /// the segment's edge as segment `id`. Returns false, changing nothing, if triangles are
+    /// tagged or the plan is not a valid triangulation (a new triangle not counter-clockwise, an
+    /// edge with the cavity on both sides not matched up); neither was seen with exact
+    /// predicates, and the caller then recovers the segment by flips.
     fn retriangulate_cavity(&mut self, a: u32, b: u32, id: u32) -> bool {
         if !self.inserter.mesh.tag.is_empty() {
             // Tags would have to be assigned per new triangle; the flip path does that.
