@@ -20,7 +20,8 @@ pub struct FinishedMesh<'a> {
     pub input_point_markers: &'a [i32],
     /// All vertices lie on one line (no triangle): every vertex counts as on the hull.
     pub all_collinear: bool,
-    /// Per vertex: whether it is a corner of an output triangle (`j` drops the others).
+    /// Per vertex: whether it is a corner of an output triangle (`j` drops the others). Only
+    /// read with `j`; may be empty otherwise.
     pub vertex_in_mesh: &'a [bool],
     /// Per triangle slot: whether the triangle is part of the output (real and not deleted).
     pub triangle_in_mesh: &'a [bool],
@@ -37,13 +38,22 @@ pub struct Numbering {
     /// vertex keeps its index.
     pub vertex: Option<Vec<u32>>,
     pub vertex_count: usize,
-    /// Per triangle slot: its output index (0-based), or [`NONE`].
+    /// Per triangle slot: its output index (0-based), or [`NONE`]. Filled only when the outputs
+    /// need it (neighbours, Voronoi diagram); empty otherwise.
     pub triangle: Vec<u32>,
     /// Output triangles in order (slot indices).
     pub triangles: Vec<u32>,
     /// Output edges in order: the half-edge of an output triangle whose twin is outside the mesh
-    /// or has a larger index, so each undirected edge appears once.
+    /// or has a larger index, so each undirected edge appears once. Filled only when the outputs
+    /// list edges (`e`, `o2`, `v`); empty otherwise.
     pub edges: Vec<u32>,
+    /// The number of output edges (always counted).
+    pub edge_count: usize,
+    /// The output edges on the boundary of the mesh (the twin's triangle is not output), in
+    /// the order of `edges`.
+    pub boundary_edges: Vec<u32>,
+    /// The output edges that lie on segments, in the order of `edges` (empty without segments).
+    pub segment_edges: Vec<u32>,
 }
 
 impl Numbering {
@@ -68,25 +78,49 @@ impl FinishedMesh<'_> {
         (id != NONE).then(|| markers[id as usize])
     }
 
-    pub fn numbering(&self, jettison: bool) -> Numbering {
+    /// Numbers vertices (with `jettison`, those `vertex_in_mesh` leaves out are dropped: `j`, or
+    /// the mid-edge nodes of six-node input with `r`), triangles and edges, building
+    /// only the per-slot and per-edge lists that `options` ask for: at 10^6 triangles each list is
+    /// megabytes of memory traffic.
+    pub fn numbering(&self, options: &Options, jettison: bool) -> Numbering {
         let slots = self.mesh.triangle_count() as usize;
-        let mut triangle = vec![NONE; slots];
         let mut triangles = Vec::with_capacity(slots);
-        for (t, &inside) in self.triangle_in_mesh.iter().enumerate() {
-            if inside {
-                triangle[t] = triangles.len() as u32;
-                triangles.push(t as u32);
+        triangles.extend((0..slots as u32).filter(|&t| self.triangle_in_mesh[t as usize]));
+        let mut triangle = Vec::new();
+        if options.neighbors || options.voronoi {
+            triangle = vec![NONE; slots];
+            for (i, &t) in triangles.iter().enumerate() {
+                triangle[t as usize] = i as u32;
             }
         }
-        let mut edges = Vec::with_capacity(triangles.len() * 3 / 2 + 8);
+        let list_edges = options.edges || options.second_order || options.voronoi;
+        // Written at the running count and kept by advancing it: `e < f` is a coin toss per
+        // half-edge, and a branch on it would be mispredicted half the time.
+        let mut edges = if list_edges { vec![0; 3 * triangles.len()] } else { Vec::new() };
+        let mut boundary_edges = Vec::new();
+        let mut segment_edges = Vec::new();
+        let mut edge_count = 0;
+        let segments = &self.mesh.segment;
+        let (twins, in_mesh) = (&self.mesh.twins, self.triangle_in_mesh);
         for &t in &triangles {
             for e in 3 * t..3 * t + 3 {
-                let f = self.mesh.twin(e);
-                if e < f || self.is_boundary(e) {
-                    edges.push(e);
+                let f = twins[e as usize];
+                // Each edge once: from the smaller half-edge, or from the only output one.
+                let boundary = !in_mesh[triangle_of(f) as usize];
+                let keep = (e < f) | boundary;
+                if list_edges {
+                    edges[edge_count] = e;
                 }
+                if boundary {
+                    boundary_edges.push(e);
+                }
+                if !segments.is_empty() && segments[e as usize] != NONE && keep {
+                    segment_edges.push(e);
+                }
+                edge_count += keep as usize;
             }
         }
+        edges.truncate(edge_count);
         let n = self.mesh.points.len();
         let (vertex, vertex_count) = if jettison {
             let mut map = vec![NONE; n];
@@ -101,7 +135,7 @@ impl FinishedMesh<'_> {
         } else {
             (None, n)
         };
-        Numbering { vertex, vertex_count, triangle, triangles, edges }
+        Numbering { vertex, vertex_count, triangle, triangles, edges, edge_count, boundary_edges, segment_edges }
     }
 
     /// Final vertex markers: the input marker; else, as Triangle assigns them while inserting
@@ -111,28 +145,25 @@ impl FinishedMesh<'_> {
     fn vertex_markers(&self, numbering: &Numbering) -> Vec<i32> {
         let n = self.mesh.points.len();
         let mut first_segment = vec![NONE; n];
-        if let Some(markers) = self.segment_markers {
-            for e in 0..self.mesh.corners.len() as u32 {
-                let id = self.mesh.segment_of(e);
-                let v = self.mesh.origin(e);
-                if id != NONE && markers[id as usize] != 0 && v != GHOST && id < first_segment[v as usize] {
-                    first_segment[v as usize] = id;
-                }
-            }
-        }
         // On the boundary: an edge of the mesh with the outside on one side, or (as Triangle marks
         // them before eating triangles) a piece of a segment on the convex hull.
         let mut on_boundary = vec![false; n];
-        for &e in &numbering.edges {
-            if self.is_boundary(e) {
-                on_boundary[self.mesh.origin(e) as usize] = true;
-                on_boundary[self.mesh.dest(e) as usize] = true;
-            }
+        for &e in &numbering.boundary_edges {
+            on_boundary[self.mesh.origin(e) as usize] = true;
+            on_boundary[self.mesh.dest(e) as usize] = true;
         }
-        if self.segment_markers.is_some() {
-            for e in 0..self.mesh.corners.len() as u32 {
+        if let Some(markers) = self.segment_markers {
+            // One pass over the segment ids; only half-edges on segments are looked at further.
+            for (e, &id) in self.mesh.segment.iter().enumerate() {
+                if id == NONE {
+                    continue;
+                }
+                let e = e as u32;
                 let (a, b) = (self.mesh.origin(e), self.mesh.dest(e));
-                if a != GHOST && b != GHOST && self.mesh.is_segment(e) && self.mesh.apex(e) == GHOST {
+                if markers[id as usize] != 0 && a != GHOST && id < first_segment[a as usize] {
+                    first_segment[a as usize] = id;
+                }
+                if a != GHOST && b != GHOST && self.mesh.apex(e) == GHOST {
                     on_boundary[a as usize] = true;
                     on_boundary[b as usize] = true;
                 }
@@ -213,7 +244,10 @@ impl FinishedMesh<'_> {
         output.point_count = numbering.vertex_count;
         output.point_attribute_count = self.point_attribute_count;
         if !options.no_node_output {
-            output.points = Some((0..n).filter(kept).flat_map(|v| self.mesh.points[v]).collect());
+            output.points = Some(match &numbering.vertex {
+                None => self.mesh.points.as_flattened().to_vec(),
+                Some(_) => (0..n).filter(kept).flat_map(|v| self.mesh.points[v]).collect(),
+            });
             if self.point_attribute_count > 0 {
                 let k = self.point_attribute_count;
                 output.point_attributes =
@@ -231,8 +265,20 @@ impl FinishedMesh<'_> {
             self.write_second_order(options, numbering, output);
         } else if !options.no_element_output {
             let mut tris = Vec::with_capacity(3 * numbering.triangles.len());
-            for &t in &numbering.triangles {
-                tris.extend(self.mesh.triangle(t).map(vid));
+            match &numbering.vertex {
+                None => {
+                    // Output triangles are never ghosts: every corner is a vertex id.
+                    for &t in &numbering.triangles {
+                        let i = 3 * t as usize;
+                        let [a, b, c] = [self.mesh.corners[i], self.mesh.corners[i + 1], self.mesh.corners[i + 2]];
+                        tris.extend_from_slice(&[a as i32 + base, b as i32 + base, c as i32 + base]);
+                    }
+                }
+                Some(_) => {
+                    for &t in &numbering.triangles {
+                        tris.extend(self.mesh.triangle(t).map(vid));
+                    }
+                }
             }
             output.triangles = Some(tris);
         }
@@ -250,7 +296,7 @@ impl FinishedMesh<'_> {
         }
 
         let edges = &numbering.edges;
-        output.edge_count = edges.len();
+        output.edge_count = numbering.edge_count;
         if options.edges {
             output.edges = Some(edges.iter().flat_map(|&e| [vid(self.mesh.origin(e)), vid(self.mesh.dest(e))]).collect());
             if markers {
@@ -260,10 +306,10 @@ impl FinishedMesh<'_> {
 
         // Segments: the subsegments of the mesh, or (without segments) the hull edges, which
         // Triangle counts although it writes no list.
-        let segments: Vec<u32> = if self.uses_segments {
-            edges.iter().copied().filter(|&e| self.segment_marker_of(e).is_some()).collect()
+        let segments: &[u32] = if self.uses_segments {
+            if self.segment_markers.is_some() { &numbering.segment_edges } else { &[] }
         } else {
-            edges.iter().copied().filter(|&e| self.is_boundary(e)).collect()
+            &numbering.boundary_edges
         };
         output.segment_count = segments.len();
         if self.uses_segments && !options.no_poly_output {

@@ -251,13 +251,17 @@ fn write_outputs(options: &Options, input: &Input<'_>, meshed: &Meshed, mut outp
     let mesh = &meshed.mesh;
     // With no triangle at all (all points on a line) no vertex is left out, as in Triangle.
     let all_collinear = mesh.triangle_count() == 0 && !meshed.uses_segments;
-    let mut vertex_in_mesh = vec![all_collinear; mesh.points.len()];
     let triangle_in_mesh: Vec<bool> = mesh.tag.iter().map(|&tag| tag != OUTSIDE).collect();
-    for (t, &inside) in triangle_in_mesh.iter().enumerate() {
-        if inside {
-            for v in mesh.triangle(t as u32) {
-                if v != GHOST {
-                    vertex_in_mesh[v as usize] = true;
+    // Only `j` asks which vertices are corners of output triangles.
+    let mut vertex_in_mesh = Vec::new();
+    if options.jettison {
+        vertex_in_mesh = vec![all_collinear; mesh.points.len()];
+        for (t, &inside) in triangle_in_mesh.iter().enumerate() {
+            if inside {
+                for v in mesh.triangle(t as u32) {
+                    if v != GHOST {
+                        vertex_in_mesh[v as usize] = true;
+                    }
                 }
             }
         }
@@ -301,7 +305,7 @@ fn write_outputs(options: &Options, input: &Input<'_>, meshed: &Meshed, mut outp
         segment_markers: (!mesh.segment.is_empty()).then_some(&meshed.segment_markers[..]),
         uses_segments: meshed.uses_segments,
     };
-    let numbering = finished.numbering(jettison);
+    let numbering = finished.numbering(options, jettison);
     finished.write(options, &numbering, &mut output);
     // Triangle attributes: with `r` the input triangles' (inherited by their pieces), with `A`
     // (and regions) the region's (0 outside every region).

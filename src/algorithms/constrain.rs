@@ -2,11 +2,22 @@
 //!
 //! Each segment is recovered by walking from one endpoint toward the other and collecting the
 //! edges it crosses. A vertex lying on the segment splits it there; a segment crossed by another
-//! gets a new vertex at the crossing, which splits both. The crossing edges are removed by
-//! flipping (Sloan, "A fast algorithm for generating constrained Delaunay triangulations", 1993):
-//! flip an edge when its quadrilateral is convex, re-queue it otherwise; then the new edges are
-//! made locally Delaunay by Lawson flips that never cross a segment, which yields the constrained
-//! Delaunay triangulation (Chew 1989; Lee and Lin 1986).
+//! gets a new vertex at the crossing, which splits both. The triangles the segment crosses form a
+//! cavity, which the segment cuts into two polygons; each is retriangulated by its constrained
+//! Delaunay triangulation, which together with the untouched triangles is the constrained
+//! Delaunay triangulation with the segment (Anglada, "An improved incremental algorithm for
+//! constructing restricted Delaunay triangulations", 1997; Shewchuk and Brown, "Fast segment
+//! insertion and incremental construction of constrained Delaunay triangulations", 2015). A
+//! polygon's triangulation is found from its base edge: the chain vertex whose circle through the
+//! base holds no other chain vertex makes the base's triangle, and the two sub-chains recurse.
+//! This touches only the cavity's triangles, reuses their slots, and needs no edge lookups by
+//! vertex pair, which the flip-based alternative does at every step.
+//!
+//! Should the new triangles not all be counter-clockwise (inexact predicates, `X`), the cavity is
+//! left alone and the crossing edges are removed by flipping instead (Sloan, "A fast algorithm
+//! for generating constrained Delaunay triangulations", 1993): flip an edge when its
+//! quadrilateral is convex, re-queue it otherwise; then the new edges are made locally Delaunay
+//! by Lawson flips that never cross a segment (Chew 1989; Lee and Lin 1986).
 
 use std::collections::VecDeque;
 
@@ -41,9 +52,9 @@ enum CrossingPoint {
 enum Walk {
     /// The edge `e` from the start runs along the segment to a vertex on it (possibly the end).
     Along(u32),
-    /// The segment crosses these edges (as vertex pairs right, left of the segment) and then
-    /// reaches `stop`, a vertex on it (possibly the end).
-    Crosses(Vec<(u32, u32)>, u32),
+    /// The segment crosses the edges in [`Constrainer::crossed`] and then reaches `stop`, a
+    /// vertex on it (possibly the end).
+    Crosses(u32),
     /// The segment crosses the segment edge `e` (after the crossings before it).
     HitsSegment(u32),
 }
@@ -60,6 +71,72 @@ pub struct Constrainer<P: Predicates> {
     /// `s`: recover segments by inserting midpoints (a conforming triangulation) instead of
     /// flipping crossing edges away.
     pub split_segments: bool,
+    /// Scratch space of segment insertion, reused from segment to segment.
+    scratch: Scratch,
+}
+
+/// Buffers of segment insertion, kept between segments so that inserting one allocates nothing.
+#[derive(Clone, Default)]
+struct Scratch {
+    /// Pieces of the segment still to insert: (from, to, id).
+    work: Vec<(u32, u32, u32)>,
+    /// The half-edges the walk crossed, in order; each runs from the right of the segment to its
+    /// left, in the triangle before the crossing.
+    crossed: Vec<u32>,
+    /// The cavity's two polygons: [`Polygon::Left`] runs from the segment's start to its end
+    /// along the vertices left of it, [`Polygon::Right`] from the end back to the start along
+    /// those right of it.
+    left: Chain,
+    right: Chain,
+    /// The triangle slots of the cavity, reused by its new triangles.
+    slots: Vec<u32>,
+    /// Sub-polygons still to triangulate: (polygon, first, last, half-edge to join to the base).
+    tasks: Vec<(Polygon, u32, u32, u32)>,
+    /// The new triangles: corners (base origin, base destination, apex) and the half-edge their
+    /// base is joined to (`NONE` for the first one, whose base is the segment).
+    triangles: Vec<([u32; 3], u32)>,
+    /// Pairs (new half-edge, untouched half-edge outside the cavity) to join as twins.
+    outer_links: Vec<(u32, u32)>,
+    /// The cavity's slots, sorted (to tell whether a half-edge lies in the cavity).
+    sorted_slots: Vec<u32>,
+    /// Triples (new half-edge, old half-edge inside the cavity, its segment id) for boundary
+    /// edges with the cavity on both sides; see [`Constrainer::retriangulate_cavity`].
+    inner_links: Vec<(u32, u32, u32)>,
+}
+
+/// A polygon of the cavity: its vertices in order (and their positions, contiguous for the
+/// circle tests) and, per consecutive pair `(v[i], v[i+1])`, the half-edge from `v[i]` to
+/// `v[i+1]` that stays (outside the cavity, across its boundary).
+#[derive(Default)]
+struct Chain {
+    vertices: Vec<u32>,
+    points: Vec<Point>,
+    outer: Vec<u32>,
+}
+
+impl Chain {
+    fn clear(&mut self) {
+        self.vertices.clear();
+        self.points.clear();
+        self.outer.clear();
+    }
+
+    fn push(&mut self, vertex: u32, point: Point) {
+        self.vertices.push(vertex);
+        self.points.push(point);
+    }
+
+    fn reverse(&mut self) {
+        self.vertices.reverse();
+        self.points.reverse();
+        self.outer.reverse();
+    }
+}
+
+#[derive(Clone, Copy)]
+enum Polygon {
+    Left,
+    Right,
 }
 
 impl<P: Predicates> Constrainer<P> {
@@ -67,7 +144,14 @@ impl<P: Predicates> Constrainer<P> {
     pub fn new(mut inserter: Inserter<P>) -> Self {
         inserter.mesh.track_vertex_edges();
         inserter.mesh.track_segments();
-        Constrainer { inserter, crossings: Vec::new(), markers: Vec::new(), ends: Vec::new(), split_segments: false }
+        Constrainer {
+            inserter,
+            crossings: Vec::new(),
+            markers: Vec::new(),
+            ends: Vec::new(),
+            split_segments: false,
+            scratch: Scratch::default(),
+        }
     }
 
     fn pt(&self, v: u32) -> Point {
@@ -89,7 +173,9 @@ impl<P: Predicates> Constrainer<P> {
     /// Inserts the segment from vertex `a` to vertex `b` with id `id` (from
     /// [`Self::new_segment_id`]). Both must be vertices of the triangulation.
     pub fn insert_segment(&mut self, a: u32, b: u32, id: u32) {
-        let mut work = vec![(a, b, id)];
+        let mut work = std::mem::take(&mut self.scratch.work);
+        work.clear();
+        work.push((a, b, id));
         // `s` splits a segment at midpoints until its pieces are edges; a piece that would need
         // more splits than this (it grazes a vertex) is recovered by flips instead.
         let mut midpoints_left = 64u32;
@@ -109,7 +195,7 @@ impl<P: Predicates> Constrainer<P> {
                     }
                     work.push((c, b, id));
                 }
-                Walk::Crosses(crossed, stop) => {
+                Walk::Crosses(stop) => {
                     work.push((stop, b, id));
                     let split = self.split_segments && midpoints_left > 0;
                     match split.then(|| self.insert_midpoint(a, stop)).flatten() {
@@ -118,7 +204,14 @@ impl<P: Predicates> Constrainer<P> {
                             work.push((m, stop, id));
                             work.push((a, m, id));
                         }
-                        None => self.remove_crossings(a, stop, crossed, id),
+                        None => {
+                            if !self.retriangulate_cavity(a, stop, id) {
+                                let mesh = &self.inserter.mesh;
+                                let crossed =
+                                    self.scratch.crossed.iter().map(|&h| (mesh.origin(h), mesh.dest(h))).collect();
+                                self.remove_crossings(a, stop, crossed, id);
+                            }
+                        }
                     }
                 }
                 Walk::HitsSegment(e) => {
@@ -146,6 +239,7 @@ impl<P: Predicates> Constrainer<P> {
                 },
             }
         }
+        self.scratch.work = work;
     }
 
     /// After inserting a vertex at a rounded position (a crossing, a midpoint), which may lie
@@ -189,43 +283,64 @@ impl<P: Predicates> Constrainer<P> {
         Some(vertex)
     }
 
-    /// Walks from `a` toward `b`.
-    fn walk(&self, a: u32, b: u32) -> Walk {
+    /// Walks from `a` toward `b`; the edges crossed are left in `self.scratch.crossed`.
+    fn walk(&mut self, a: u32, b: u32) -> Walk {
+        self.scratch.crossed.clear();
         let mesh = &self.inserter.mesh;
         let (pa, pb) = (self.pt(a), self.pt(b));
-        // Find the triangle (a, x, y) around `a` whose wedge holds the direction to `b`.
         let start = mesh.vertex_edge[a as usize];
+        // Often the segment is an edge already (a polygon's sides between close vertices): look
+        // for `b` among the neighbours first, which needs no point and no predicate. (Then no
+        // other neighbour lies on the ray to `b` and no wedge strictly contains it, so the search
+        // below would find the same edge.)
         let mut e = start;
+        loop {
+            if mesh.dest(e) == b {
+                return Walk::Along(e);
+            }
+            e = mesh.twin(prev(e));
+            if e == start {
+                break;
+            }
+        }
+        // Find the triangle (a, x, y) around `a` whose wedge holds the direction to `b`. Each
+        // wedge's `y` is the next one's `x`: its orientation is carried over.
         let (mut right, mut left);
+        let mut carried = (GHOST, 0.0);
         loop {
             let (x, y) = (mesh.dest(e), mesh.apex(e));
             if x != GHOST {
-                let ox = P::orient2d(pa, self.pt(x), pb);
+                let ox = if carried.0 == x { carried.1 } else { P::orient2d(pa, self.pt(x), pb) };
                 if ox == 0.0 && along(pa, self.pt(x), pb) {
                     return Walk::Along(e);
                 }
-                if y != GHOST && ox > 0.0 && P::orient2d(pa, self.pt(y), pb) < 0.0 {
-                    right = x;
-                    left = y;
-                    break;
+                if y != GHOST && ox > 0.0 {
+                    let oy = P::orient2d(pa, self.pt(y), pb);
+                    if oy < 0.0 {
+                        right = x;
+                        left = y;
+                        break;
+                    }
+                    carried = (y, oy);
                 }
             }
             e = mesh.twin(prev(e));
             assert!(e != start, "no triangle around vertex {a} faces vertex {b}");
         }
         // Cross edges until a vertex on the segment is reached.
-        let mut crossed = Vec::new();
+        let crossed = &mut self.scratch.crossed;
         let mut h = next(e); // right → left, with the segment crossing it
         loop {
+            debug_assert!(mesh.origin(h) == right && mesh.dest(h) == left);
             if mesh.is_segment(h) {
                 return Walk::HitsSegment(h);
             }
-            crossed.push((right, left));
+            crossed.push(h);
             let f = mesh.twin(h); // left → right in the next triangle
             let z = mesh.apex(f);
-            let oz = P::orient2d(pa, pb, self.pt(z));
+            let oz = P::orient2d(pa, pb, mesh.point(z));
             if oz == 0.0 {
-                return Walk::Crosses(crossed, z);
+                return Walk::Crosses(z);
             } else if oz > 0.0 {
                 left = z;
                 h = next(f); // right → z
@@ -286,6 +401,161 @@ impl<P: Predicates> Constrainer<P> {
         self.settle(vertex);
         self.crossings.push(Crossing { vertex, from: u, to: v, t });
         CrossingPoint::New(vertex)
+    }
+
+    /// Replaces the triangles that the segment `a`–`b` crosses (the edges in
+    /// `self.scratch.crossed`, which must be the complete list from `a` to `b`) by the constrained
+    /// Delaunay triangulations of the two polygons the segment cuts their union into, and marks
+    /// the segment's edge as segment `id`. Returns false, changing nothing, if triangles are
+    /// tagged or the plan is not a valid triangulation (a new triangle not counter-clockwise, an
+    /// edge with the cavity on both sides not matched up); neither was seen with exact
+    /// predicates, and the caller then recovers the segment by flips.
+    fn retriangulate_cavity(&mut self, a: u32, b: u32, id: u32) -> bool {
+        if !self.inserter.mesh.tag.is_empty() {
+            // Tags would have to be assigned per new triangle; the flip path does that.
+            return false;
+        }
+        let Scratch { crossed, left, right, slots, tasks, triangles, outer_links, sorted_slots, inner_links, .. } =
+            &mut self.scratch;
+        let mesh = &self.inserter.mesh;
+        let k = crossed.len();
+        debug_assert!(k > 0);
+        // The crossed triangles T0 … Tk: T0 = (a, r1, l1) holds the first crossed edge r1 → l1;
+        // each later one adds its apex to the left or the right chain; Tk has apex b. A chain
+        // edge's outer half-edge is the twin of the cavity triangle's half-edge on it.
+        // The right chain is collected from a to b here and reversed below.
+        left.clear();
+        right.clear();
+        slots.clear();
+        let h1 = crossed[0];
+        slots.push(triangle_of(h1));
+        let (pa, l1, r1) = (mesh.point(a), mesh.dest(h1), mesh.origin(h1));
+        left.push(a, pa);
+        left.push(l1, mesh.point(l1));
+        left.outer.push(mesh.twin(next(h1))); // a → l1
+        right.push(a, pa);
+        right.push(r1, mesh.point(r1));
+        right.outer.push(mesh.twin(prev(h1))); // r1 → a
+        for i in 0..k {
+            let f = mesh.twin(crossed[i]); // left → right, in the next triangle of the cavity
+            slots.push(triangle_of(f));
+            let z = mesh.apex(f);
+            let pz = mesh.point(z);
+            let last = i + 1 == k;
+            // The next crossed edge is right → z when z is on the left, z → left otherwise.
+            if last || crossed[i + 1] == next(f) {
+                left.push(z, pz);
+                left.outer.push(mesh.twin(prev(f))); // left → z
+            }
+            if last || crossed[i + 1] == prev(f) {
+                right.push(z, pz);
+                right.outer.push(mesh.twin(next(f))); // z → right
+            }
+        }
+        debug_assert!(*left.vertices.last().unwrap() == b && *right.vertices.last().unwrap() == b);
+        right.reverse();
+        // The union of the crossed triangles need not be a simple polygon: the segment can leave
+        // the star of a vertex and enter it again, so a chain may visit a vertex twice, and an
+        // edge between two crossed triangles that the segment does not cross lies on a chain
+        // twice, once in each direction (Shewchuk and Brown 2015 allow the same). Such an edge's
+        // "outer" half-edge is in the cavity; its two new half-edges are joined to each other.
+        sorted_slots.clear();
+        sorted_slots.extend_from_slice(slots);
+        sorted_slots.sort_unstable();
+        inner_links.clear();
+
+        // Plan the new triangles: top-down from each polygon's base (the segment), each
+        // sub-polygon's base joined to the half-edge of its parent triangle. Slot `slots[j]` takes
+        // the `j`-th new triangle; the left polygon's first triangle holds the segment a → b, the
+        // right polygon's first one b → a.
+        triangles.clear();
+        outer_links.clear();
+        tasks.clear();
+        tasks.push((Polygon::Right, 0, right.vertices.len() as u32 - 1, NONE));
+        tasks.push((Polygon::Left, 0, left.vertices.len() as u32 - 1, NONE));
+        while let Some((polygon, first, last, join)) = tasks.pop() {
+            let chain = match polygon {
+                Polygon::Left => &*left,
+                Polygon::Right => &*right,
+            };
+            if last == first + 1 {
+                // A boundary edge of the cavity: the half-edge `join` becomes its twin.
+                let outer = chain.outer[first as usize];
+                if sorted_slots.binary_search(&triangle_of(outer)).is_ok() {
+                    inner_links.push((join, outer, mesh.segment_of(outer)));
+                } else {
+                    outer_links.push((join, outer));
+                }
+                continue;
+            }
+            let (v, points) = (&chain.vertices, &chain.points);
+            let (u, w) = (points[first as usize], points[last as usize]);
+            let apex = first + 1 + P::smallest_circle(u, w, &points[first as usize + 1..last as usize]) as u32;
+            if P::orient2d(u, w, points[apex as usize]) <= 0.0 {
+                return false;
+            }
+            let t = slots[triangles.len()];
+            let corners = [v[first as usize], v[last as usize], v[apex as usize]];
+            let join = if join == NONE && matches!(polygon, Polygon::Right) {
+                // The right polygon's base b → a is the twin of the left one's a → b, which is the
+                // first new triangle's base (the left polygon is planned first).
+                3 * slots[0]
+            } else {
+                join
+            };
+            triangles.push((corners, join));
+            // Triangle (u, w, c): w → c at 3t + 1 faces the sub-polygon (apex … last), c → u at
+            // 3t + 2 the sub-polygon (first … apex).
+            tasks.push((polygon, apex, last, 3 * t + 1));
+            tasks.push((polygon, first, apex, 3 * t + 2));
+        }
+        debug_assert_eq!(triangles.len(), slots.len());
+        if !inner_links.is_empty() {
+            // Each such edge came up twice, as old half-edge h and as its old twin: pair the two
+            // new half-edges by the edge's smaller old half-edge.
+            if inner_links.len() % 2 != 0 {
+                return false;
+            }
+            for link in inner_links.iter_mut() {
+                link.1 = link.1.min(mesh.twin(link.1));
+            }
+            inner_links.sort_unstable_by_key(|&(_, key, _)| key);
+            if inner_links.chunks_exact(2).any(|pair| pair[0].1 != pair[1].1) {
+                return false;
+            }
+        }
+
+        // Commit: the slots' triangles are rewritten, joined to each other and to the outside.
+        let mesh = &mut self.inserter.mesh;
+        for (&t, &([u, w, c], join)) in slots.iter().zip(triangles.iter()) {
+            let base = 3 * t as usize;
+            mesh.corners[base..base + 3].copy_from_slice(&[u, w, c]);
+            mesh.segment[base..base + 3].fill(NONE);
+            if join != NONE {
+                mesh.twins[base] = join;
+                mesh.twins[join as usize] = base as u32;
+            }
+            // Every cavity vertex is a corner of a new triangle: its outgoing half-edge is
+            // refreshed here (the old one may have been in the cavity).
+            mesh.vertex_edge[u as usize] = base as u32;
+            mesh.vertex_edge[w as usize] = base as u32 + 1;
+            mesh.vertex_edge[c as usize] = base as u32 + 2;
+        }
+        for &(inner, outer) in outer_links.iter() {
+            mesh.twins[inner as usize] = outer;
+            mesh.twins[outer as usize] = inner;
+            mesh.segment[inner as usize] = mesh.segment[outer as usize];
+        }
+        for pair in inner_links.chunks_exact(2) {
+            // The segment did not cross this edge, so it may be a segment: it stays one.
+            let (x, y, segment) = (pair[0].0, pair[1].0, pair[0].2);
+            mesh.twins[x as usize] = y;
+            mesh.twins[y as usize] = x;
+            mesh.segment[x as usize] = segment;
+            mesh.segment[y as usize] = segment;
+        }
+        mesh.set_segment(3 * slots[0], id);
+        true
     }
 
     /// Removes the edges crossing the new segment `a`–`b` by Sloan's flips, marks the recovered
@@ -411,9 +681,28 @@ mod tests {
                 let a = (splitmix64(&mut s) % n as u64) as u32;
                 let b = (splitmix64(&mut s) % n as u64) as u32;
                 let id = cdt.new_segment_id(k as i32 % 3, a, b);
+                let m = &cdt.inserter.mesh;
+                let segments_before: Vec<(u32, u32)> = (0..m.corners.len() as u32)
+                    .filter(|&e| m.is_segment(e))
+                    .map(|e| (m.origin(e), m.dest(e)))
+                    .collect();
                 cdt.insert_segment(a, b, id);
                 let m = &cdt.inserter.mesh;
                 m.check_topology().unwrap_or_else(|e| panic!("seed {seed}: {e}"));
+                for &(u, v) in &segments_before {
+                    // A segment edge stays one, unless the new segment crossed it through a
+                    // vertex `w` (in floating point): then it was replaced by u-w and w-v.
+                    if let Some(e) = m.find_edge(u, v) {
+                        let through_vertex = (0..m.points.len() as u32).any(|w| {
+                            let is_segment = |x, y| m.find_edge(x, y).is_some_and(|f| m.is_segment(f));
+                            w != u && w != v && is_segment(u, w) && is_segment(w, v)
+                        });
+                        assert!(m.is_segment(e) || through_vertex, "seed {seed}: segment edge {u}-{v} lost its mark");
+                    }
+                }
+                if let Some(e) = m.find_edge(a, b) {
+                    assert!(m.is_segment(e), "seed {seed}: segment {a}-{b} not marked");
+                }
                 for t in m.real_triangles() {
                     let [p, q, r] = m.triangle(t).map(|v| m.point(v));
                     assert!(Exact::orient2d(p, q, r) > 0.0, "seed {seed}: inverted triangle");
@@ -431,5 +720,63 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// A star-shaped polygon's edges inserted in random orders: the cavities of long, thin
+    /// segments among earlier ones are often not simple polygons (an edge between two crossed
+    /// triangles, possibly a segment, lies on their boundary twice). Every edge must end up a
+    /// segment, every earlier segment must stay one, and the result must be constrained Delaunay.
+    #[test]
+    fn star_polygon_in_random_orders() {
+        for seed in 0..20u64 {
+            let mut s = seed;
+            let n = 300 + (splitmix64(&mut s) % 700) as usize;
+            let mut angles: Vec<f64> = (0..n).map(|_| rand01(&mut s) * std::f64::consts::TAU).collect();
+            angles.sort_by(f64::total_cmp);
+            let pts: Vec<Point> = angles
+                .iter()
+                .map(|&a| {
+                    let r = 0.1 + 0.9 * rand01(&mut s);
+                    [r * a.cos(), r * a.sin()]
+                })
+                .collect();
+            let tri = crate::algorithms::delaunay::triangulate::<Exact>(pts.clone(), &hilbert_order(&pts));
+            let mut cdt = Constrainer::new(Inserter::<Exact>::new(tri.mesh));
+            let mut order: Vec<u32> = (0..n as u32).collect();
+            for i in (1..n).rev() {
+                order.swap(i, (splitmix64(&mut s) % (i as u64 + 1)) as usize);
+            }
+            for (k, &i) in order.iter().enumerate() {
+                let (a, b) = (i, (i + 1) % n as u32);
+                let id = cdt.new_segment_id(1, a, b);
+                cdt.insert_segment(a, b, id);
+                if k % 50 == 0 || k + 1 == n {
+                    let m = &cdt.inserter.mesh;
+                    m.check_topology().unwrap_or_else(|e| panic!("seed {seed}: {e}"));
+                    for &j in &order[..=k] {
+                        let e = m.find_edge(j, (j + 1) % n as u32).expect("polygon edge");
+                        assert!(m.is_segment(e), "seed {seed}: polygon edge {j} not a segment after {k} insertions");
+                    }
+                }
+            }
+            let m = &cdt.inserter.mesh;
+            assert_eq!(m.corners.len(), tri_corner_count(n, m), "seed {seed}: no new vertices expected");
+            for t in m.real_triangles() {
+                let [p, q, r] = m.triangle(t).map(|v| m.point(v));
+                assert!(Exact::orient2d(p, q, r) > 0.0, "seed {seed}: inverted triangle");
+                for e in 3 * t..3 * t + 3 {
+                    let o = m.apex(m.twin(e));
+                    if o != GHOST && !m.is_segment(e) {
+                        assert!(Exact::incircle(p, q, r, m.point(o)) <= 0.0, "seed {seed}: not CDT");
+                    }
+                }
+            }
+        }
+    }
+
+    /// Corners of a triangulation of `n` vertices with ghosts: 3 (2n − 2) half-edges, hull or not.
+    fn tri_corner_count(n: usize, m: &crate::mesh::Mesh) -> usize {
+        assert_eq!(m.points.len(), n);
+        3 * (2 * n - 2)
     }
 }

@@ -7,7 +7,7 @@
 
 use crate::algorithms::constrain::Constrainer;
 use crate::geometry::{Point, Predicates};
-use crate::mesh::{triangle_of, Mesh, OUTSIDE};
+use crate::mesh::{triangle_of, Mesh, GHOST, OUTSIDE};
 
 /// What the triangle tags ([`Mesh::tag`]) stand for: tag [`OUTSIDE`] for eaten triangles and
 /// ghosts, [`INSIDE`] for the domain outside every region, `FIRST_REGION + r` for region `r`.
@@ -83,16 +83,18 @@ pub fn carve<P: Predicates>(
     let slots = cdt.inserter.mesh.triangle_count() as usize;
     let mut seeds = Vec::new();
     if !keep_convex_hull {
-        // Real triangles along hull edges that are not segments.
+        // Real triangles along hull edges that are not segments: found from the ghost triangles
+        // (tagged outside), whose one finite edge is a hull edge, rather than by looking across
+        // every edge of every triangle.
         let mesh = &cdt.inserter.mesh;
         for t in 0..slots as u32 {
-            if mesh.tag[t as usize] == OUTSIDE {
+            if mesh.tag[t as usize] != OUTSIDE {
                 continue;
             }
             for e in 3 * t..3 * t + 3 {
-                if !mesh.is_segment(e) && mesh.is_ghost(triangle_of(mesh.twin(e))) {
-                    seeds.push(t);
-                    break;
+                let h = mesh.twin(e);
+                if mesh.origin(e) != GHOST && mesh.dest(e) != GHOST && !mesh.is_segment(h) {
+                    seeds.push(triangle_of(h));
                 }
             }
         }

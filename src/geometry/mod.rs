@@ -15,6 +15,22 @@ pub trait Predicates: Copy + Send + Sync + 'static {
     /// Positive if `d` lies inside the circle through the counter-clockwise `a`, `b`, `c`,
     /// negative if outside, zero if on it.
     fn incircle(a: Point, b: Point, c: Point, d: Point) -> f64;
+
+    /// The index of the candidate (of a non-empty list) chosen as the apex over base `u → w`:
+    /// the first candidate, replaced by each later one that lies strictly inside the circle
+    /// through `u`, `w` and the current choice. When all candidates lie left of `u → w`, whose
+    /// circles through `u` and `w` are nested on that side, this is the first one whose circle
+    /// contains no other candidate.
+    #[inline]
+    fn smallest_circle(u: Point, w: Point, candidates: &[Point]) -> usize {
+        let mut best = 0;
+        for (i, &p) in candidates.iter().enumerate().skip(1) {
+            if Self::incircle(u, w, candidates[best], p) > 0.0 {
+                best = i;
+            }
+        }
+        best
+    }
 }
 
 /// Exact predicates (the default).
@@ -36,6 +52,62 @@ const EPSILON: f64 = f64::EPSILON * 0.5;
 /// ("Adaptive Precision Floating-Point Arithmetic and Fast Robust Geometric Predicates", 1997).
 const CCW_ERRBOUND_A: f64 = (3.0 + 16.0 * EPSILON) * EPSILON;
 const ICC_ERRBOUND_A: f64 = (10.0 + 96.0 * EPSILON) * EPSILON;
+/// Error bound of the in-circle determinant as [`PencilFrame`] evaluates it (linear in the tested
+/// point). Following Shewchuk's analysis for that evaluation order gives 11ε + O(ε²) times the
+/// permanent; 16ε leaves a margin.
+const PENCIL_ERRBOUND: f64 = (16.0 + 128.0 * EPSILON) * EPSILON;
+
+/// The in-circle test of many points `p` against one circle through `u`, `w` and `c`, with
+/// everything that does not depend on `p` computed once. With the origin at `u` (`a = w − u`,
+/// `b = c − u`, `d = p − u`, lifts `|·|²`), Shewchuk's determinant for `incircle(w, c, p, u)`,
+/// which is `−incircle(u, w, c, p)` (a cyclic shift of four rows is an odd permutation), is
+/// `dx·A + dy·B + dlift·C` with `A = blift·ay − alift·by`, `B = alift·bx − blift·ax`,
+/// `C = ax·by − bx·ay`: five products per point instead of a full determinant.
+struct PencilFrame {
+    u: Point,
+    w: Point,
+    c: Point,
+    /// A, B, C and the matching permanents (sums of absolute values of their products).
+    coefficients: [f64; 3],
+    permanents: [f64; 3],
+}
+
+impl PencilFrame {
+    #[inline(always)]
+    fn new(u: Point, w: Point, c: Point) -> PencilFrame {
+        let (ax, ay) = (w[0] - u[0], w[1] - u[1]);
+        let (bx, by) = (c[0] - u[0], c[1] - u[1]);
+        let alift = ax * ax + ay * ay;
+        let blift = bx * bx + by * by;
+        let (a1, a2) = (blift * ay, alift * by);
+        let (b1, b2) = (alift * bx, blift * ax);
+        let (c1, c2) = (ax * by, bx * ay);
+        PencilFrame {
+            u,
+            w,
+            c,
+            coefficients: [a1 - a2, b1 - b2, c1 - c2],
+            permanents: [a1.abs() + a2.abs(), b1.abs() + b2.abs(), c1.abs() + c2.abs()],
+        }
+    }
+
+    /// Whether `p` lies strictly inside the circle through `u`, `w`, `c` (counter-clockwise):
+    /// exactly, with the adaptive exact test when the filter cannot decide.
+    #[inline(always)]
+    fn strictly_inside(&self, p: Point) -> bool {
+        let (dx, dy) = (p[0] - self.u[0], p[1] - self.u[1]);
+        let dlift = dx * dx + dy * dy;
+        let [a, b, c] = self.coefficients;
+        let [pa, pb, pc] = self.permanents;
+        let det = dx * a + dy * b + dlift * c;
+        let permanent = dx.abs() * pa + dy.abs() * pb + dlift * pc;
+        let errbound = PENCIL_ERRBOUND * permanent;
+        if det > errbound || -det > errbound {
+            return det < 0.0;
+        }
+        robust::incircle(coord(self.u), coord(self.w), coord(self.c), coord(p)) > 0.0
+    }
+}
 
 impl Predicates for Exact {
     /// The floating-point filter is evaluated here, inline; only when it cannot decide the sign
@@ -85,6 +157,21 @@ impl Predicates for Exact {
             return det;
         }
         robust::incircle(coord(a), coord(b), coord(c), coord(d))
+    }
+
+    /// The same choice as the default, with the circle's terms computed once per candidate
+    /// circle instead of once per test ([`PencilFrame`]); exact like every test here.
+    #[inline]
+    fn smallest_circle(u: Point, w: Point, candidates: &[Point]) -> usize {
+        let mut best = 0;
+        let mut frame = PencilFrame::new(u, w, candidates[0]);
+        for (i, &p) in candidates.iter().enumerate().skip(1) {
+            if frame.strictly_inside(p) {
+                best = i;
+                frame = PencilFrame::new(u, w, p);
+            }
+        }
+        best
     }
 }
 
@@ -137,6 +224,42 @@ mod tests {
         assert!(Exact::incircle(a, b, c, [2.0, 2.0]) < 0.0);
         assert_eq!(Exact::incircle(a, b, c, [1.0, 1.0]), 0.0);
         assert!(Inexact::incircle(a, b, c, [0.5, 0.5]) > 0.0);
+    }
+
+    /// The pencil frame's test agrees with the adaptive in-circle test, on random points and on
+    /// nearly cocircular ones (where the filter must defer to the exact stages).
+    #[test]
+    fn pencil_frame_matches_incircle() {
+        let mut s = 11u64;
+        let mut rand = || crate::algorithms::delaunay::order::splitmix64(&mut s) as f64 / u64::MAX as f64;
+        for round in 0..20_000 {
+            let u = [rand(), rand()];
+            let w = [rand(), rand()];
+            let c = [rand(), rand()];
+            let p = if round % 2 == 0 {
+                [rand(), rand()]
+            } else {
+                // Nearly on the circle through u, w, c: the circumcentre plus the radius, rounded.
+                let (centre, _, _) = circumcenter(u, w, c);
+                let r = ((u[0] - centre[0]).powi(2) + (u[1] - centre[1]).powi(2)).sqrt();
+                let angle = rand() * std::f64::consts::TAU;
+                [centre[0] + r * angle.cos(), centre[1] + r * angle.sin()]
+            };
+            let (w, c) = if Exact::orient2d(u, w, c) > 0.0 { (w, c) } else { (c, w) };
+            let expected = Exact::incircle(u, w, c, p) > 0.0;
+            assert_eq!(PencilFrame::new(u, w, c).strictly_inside(p), expected, "round {round}");
+        }
+        // Exactly cocircular: never strictly inside.
+        let (u, w, c) = ([0.0, 0.0], [4.0, 0.0], [4.0, 4.0]);
+        assert!(!PencilFrame::new(u, w, c).strictly_inside([0.0, 4.0]));
+        assert!(PencilFrame::new(u, w, c).strictly_inside([1.0, 1.0]));
+        // The fast and the default choice agree.
+        let candidates: Vec<Point> = (0..50).map(|i| [i as f64 * 0.1, 1.0 + ((i * 7) % 11) as f64 * 0.3]).collect();
+        let (u, w) = ([0.0, 0.0], [5.0, 0.0]);
+        let by_default = (1..candidates.len()).fold(0, |best, i| {
+            if Exact::incircle(u, w, candidates[best], candidates[i]) > 0.0 { i } else { best }
+        });
+        assert_eq!(Exact::smallest_circle(u, w, &candidates), by_default);
     }
 
     #[test]

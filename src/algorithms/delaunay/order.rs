@@ -58,10 +58,47 @@ fn hilbert_keys(points: &[Point]) -> Vec<u32> {
 /// point comes first, so of two duplicate points the first is inserted and survives (as
 /// Triangle's documentation of `j` says).
 pub fn hilbert_order(points: &[Point]) -> Vec<u32> {
-    let mut keyed: Vec<u64> =
+    let keyed: Vec<u64> =
         hilbert_keys(points).into_iter().enumerate().map(|(i, k)| (u64::from(k) << 32) | i as u64).collect();
-    keyed.sort_unstable();
-    keyed.into_iter().map(|k| k as u32).collect()
+    radix_sort_by_high_half(keyed).into_iter().map(|k| k as u32).collect()
+}
+
+/// Sorts words whose low halves are already increasing by their high halves, keeping the
+/// order of equal high halves (so the result is the plain sorted order). A least-significant-
+/// digit radix sort (three stable counting passes of 11, 11 and 10 bits) is linear, and at 10^6
+/// keys several times faster than a comparison sort.
+fn radix_sort_by_high_half(mut keys: Vec<u64>) -> Vec<u64> {
+    const PASSES: [(u32, u32); 3] = [(32, 11), (43, 11), (54, 10)];
+    if keys.len() < 1 << 10 {
+        keys.sort_unstable();
+        return keys;
+    }
+    let mut counts = [[0usize; 1 << 11]; 3];
+    for &k in &keys {
+        for (pass, &(shift, bits)) in PASSES.iter().enumerate() {
+            counts[pass][((k >> shift) & ((1 << bits) - 1)) as usize] += 1;
+        }
+    }
+    let mut other = vec![0u64; keys.len()];
+    for (pass, &(shift, bits)) in PASSES.iter().enumerate() {
+        let counts = &mut counts[pass];
+        if counts.iter().any(|&c| c == keys.len()) {
+            continue; // one digit value for all keys: this pass would not move anything
+        }
+        let mut start = 0;
+        for c in counts.iter_mut() {
+            let n = *c;
+            *c = start;
+            start += n;
+        }
+        for &k in &keys {
+            let digit = ((k >> shift) & ((1 << bits) - 1)) as usize;
+            other[counts[digit]] = k;
+            counts[digit] += 1;
+        }
+        std::mem::swap(&mut keys, &mut other);
+    }
+    keys
 }
 
 /// All point indices in a biased randomized insertion order with Hilbert order inside each
@@ -110,6 +147,21 @@ mod tests {
         for w in by_index.windows(2) {
             let dist = w[0].0.abs_diff(w[1].0) + w[0].1.abs_diff(w[1].1);
             assert_eq!(dist, 1);
+        }
+    }
+
+    #[test]
+    fn radix_sort_sorts() {
+        let mut s = 3;
+        for n in [0usize, 5, 1000, 5000, 100_000] {
+            // Few distinct high halves (ties) and a full range, with increasing low halves.
+            for spread in [7u64, u32::MAX as u64] {
+                let keys: Vec<u64> =
+                    (0..n as u64).map(|i| ((splitmix64(&mut s) % (spread + 1)) << 32) | i).collect();
+                let mut expected = keys.clone();
+                expected.sort_unstable();
+                assert_eq!(radix_sort_by_high_half(keys), expected);
+            }
         }
     }
 
