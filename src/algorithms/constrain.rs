@@ -107,7 +107,7 @@ struct Scratch {
 /// A polygon of the cavity: its vertices in order (and their positions, contiguous for the
 /// circle tests) and, per consecutive pair `(v[i], v[i+1])`, the half-edge from `v[i]` to
 /// `v[i+1]` that stays (outside the cavity, across its boundary).
-#[derive(Default)]
+#[derive(Clone, Default)]
 struct Chain {
     vertices: Vec<u32>,
     points: Vec<Point>,
