@@ -19,7 +19,9 @@ use std::collections::{BTreeSet, HashMap};
 use common::checks::check_neighbors;
 use common::points::Point;
 use common::pslg::{self, affine_attribute, Pslg};
-use common::pslg_checks::{check_constrained_delaunay, check_markers, segment_chains, MeshView};
+use common::pslg_checks::{
+    bypasses_a_vertex, check_constrained_delaunay, check_markers, segment_chains, MeshView,
+};
 use common::{ours, Triangulation};
 
 /// Runs ours on `pslg` with `switches` and checks every property that applies; returns the
@@ -34,6 +36,10 @@ fn check(pslg: &Pslg, switches: &str) -> Triangulation {
     check_constrained_delaunay(&mesh).unwrap_or_else(|e| fail(e));
     let chains =
         segment_chains(&pslg.input, &mesh, switches.contains('c')).unwrap_or_else(|e| fail(e));
+    assert!(
+        !bypasses_a_vertex(&pslg.input, &mesh),
+        "{context}: an output segment passes by an input vertex lying on it"
+    );
 
     if let Some(expected) = pslg.expected_area(switches) {
         let area = mesh.area();

@@ -805,7 +805,6 @@ fn a_vertex_on_a_crossed_segment_gives_a_valid_mesh() {
 /// meshes without warnings (regressions: lattice seed 2 gave an invalid mesh; crossing seeds 4
 /// and 5 a runaway refinement).
 #[test]
-#[ignore = "engine: a vertex on a segment beyond a crossing is missed (lattice seed 2)"]
 fn random_crossings_and_vertices_on_segments_refine_correctly() {
     let inputs: Vec<Pslg> = (1..=5)
         .map(|seed| pslg::crossing_segments(seed, 12, 8))

@@ -23,7 +23,7 @@ use std::collections::VecDeque;
 
 use crate::algorithms::delaunay::{Inserter, Location};
 use crate::geometry::{Point, Predicates};
-use crate::mesh::{next, prev, triangle_of, GHOST, NONE};
+use crate::mesh::{next, prev, triangle_of, Mesh, GHOST, NONE};
 
 /// A vertex created where two segments cross: it lies on the edge from `from` to `to` at
 /// parameter `t` (for interpolating attributes).
@@ -215,6 +215,13 @@ impl<P: Predicates> Constrainer<P> {
                     }
                 }
                 Walk::HitsSegment(e) => {
+                    // A vertex lying exactly on this segment beyond the crossed one splits it
+                    // first: the piece after the (rounded) crossing point would miss it by an ulp.
+                    if let Some(w) = self.vertex_on_segment_beyond(a, b, e) {
+                        work.push((w, b, id));
+                        work.push((a, w, id));
+                        continue;
+                    }
                     // Read the crossed segment now: making the crossing vertex may rewrite `e`.
                     let mesh = &self.inserter.mesh;
                     let (u, v, other) = (mesh.origin(e), mesh.dest(e), mesh.segment_of(e));
@@ -305,7 +312,7 @@ impl<P: Predicates> Constrainer<P> {
         }
         // Find the triangle (a, x, y) around `a` whose wedge holds the direction to `b`. Each
         // wedge's `y` is the next one's `x`: its orientation is carried over.
-        let (mut right, mut left);
+        let (right, left);
         let mut carried = (GHOST, 0.0);
         loop {
             let (x, y) = (mesh.dest(e), mesh.apex(e));
@@ -328,27 +335,19 @@ impl<P: Predicates> Constrainer<P> {
             assert!(e != start, "no triangle around vertex {a} faces vertex {b}");
         }
         // Cross edges until a vertex on the segment is reached.
-        let crossed = &mut self.scratch.crossed;
-        let mut h = next(e); // right → left, with the segment crossing it
-        loop {
-            debug_assert!(mesh.origin(h) == right && mesh.dest(h) == left);
-            if mesh.is_segment(h) {
-                return Walk::HitsSegment(h);
-            }
-            crossed.push(h);
-            let f = mesh.twin(h); // left → right in the next triangle
-            let z = mesh.apex(f);
-            let oz = P::orient2d(pa, pb, mesh.point(z));
-            if oz == 0.0 {
-                return Walk::Crosses(z);
-            } else if oz > 0.0 {
-                left = z;
-                h = next(f); // right → z
-            } else {
-                right = z;
-                h = prev(f); // z → left
-            }
+        debug_assert!(mesh.origin(next(e)) == right && mesh.dest(next(e)) == left);
+        match cross_edges::<P>(mesh, pa, pb, next(e), true, &mut self.scratch.crossed) {
+            Ok(z) => Walk::Crosses(z),
+            Err(h) => Walk::HitsSegment(h),
         }
+    }
+
+    /// The first vertex that lies exactly on the segment from `a` to `b` beyond the segment edge
+    /// `h` it crosses (right → left), if that is not `b`.
+    fn vertex_on_segment_beyond(&mut self, a: u32, b: u32, h: u32) -> Option<u32> {
+        let (pa, pb) = (self.pt(a), self.pt(b));
+        let z = cross_edges::<P>(&self.inserter.mesh, pa, pb, h, false, &mut self.scratch.crossed).ok()?;
+        (z != b).then_some(z)
     }
 
     /// Finds or makes the vertex where the segment from `a` to `b` crosses the segment edge `e`.
@@ -641,6 +640,34 @@ impl<P: Predicates> Constrainer<P> {
             }
             Location::Outside(_) => None,
         }
+    }
+}
+
+/// Crosses edges along the line from `pa` to `pb`, starting with half-edge `h` (right → left of
+/// the line, which crosses it), until the line reaches a vertex: `Ok(vertex)`; or, with
+/// `stop_at_segments`, until the next edge to cross is a segment: `Err(that half-edge)`. The
+/// half-edges crossed are pushed to `crossed`.
+fn cross_edges<P: Predicates>(
+    mesh: &Mesh,
+    pa: Point,
+    pb: Point,
+    mut h: u32,
+    stop_at_segments: bool,
+    crossed: &mut Vec<u32>,
+) -> Result<u32, u32> {
+    loop {
+        if stop_at_segments && mesh.is_segment(h) {
+            return Err(h);
+        }
+        crossed.push(h);
+        let f = mesh.twin(h); // left → right in the next triangle
+        let z = mesh.apex(f);
+        let oz = P::orient2d(pa, pb, mesh.point(z));
+        if oz == 0.0 {
+            return Ok(z);
+        }
+        // Right → z when z is left of the line, z → left otherwise.
+        h = if oz > 0.0 { next(f) } else { prev(f) };
     }
 }
 

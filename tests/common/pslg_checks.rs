@@ -220,6 +220,23 @@ pub fn check_locally_delaunay(mesh: &MeshView<'_>, segments_too: bool) -> Result
     Ok(())
 }
 
+/// Whether an output segment of `mesh` passes by an input vertex within rounding distance
+/// (1e-12 of its length) without ending at it: Triangle's segments do so beyond a rounded
+/// crossing point, ours do not.
+pub fn bypasses_a_vertex(input: &MeshInput, mesh: &MeshView<'_>) -> bool {
+    mesh.segments.iter().any(|s| {
+        let (pu, pw) = (mesh.points[s[0]], mesh.points[s[1]]);
+        let d = [pw[0] - pu[0], pw[1] - pu[1]];
+        let length2 = d[0] * d[0] + d[1] * d[1];
+        input.points.iter().any(|&p| {
+            let e = [p[0] - pu[0], p[1] - pu[1]];
+            let along = e[0] * d[0] + e[1] * d[1];
+            let across = e[0] * d[1] - e[1] * d[0];
+            along > 0.0 && along < length2 && across.abs() <= 1e-12 * length2 && p != pu && p != pw
+        })
+    })
+}
+
 /// The input segments that Triangle inserts (zero-based, endpoints in range and distinct
 /// coordinates), with their index in the input.
 pub fn effective_segments(input: &MeshInput) -> Vec<(usize, [usize; 2])> {
@@ -308,8 +325,8 @@ pub fn segment_chains(
             current = next;
         }
         // Input vertices lying on the segment split it, unless the chain bends around them at
-        // a new vertex (a rounded crossing: Triangle inserts the rest of the segment from there,
-        // and so do we).
+        // a new vertex (a rounded crossing: Triangle inserts the rest of the segment from there;
+        // ours does not, which `bypasses_a_vertex` checks).
         for (v, &p) in input.points.iter().enumerate() {
             let t = param(p);
             if t > 0.0 && t < 1.0 && orient2d(pa, pb, p) == 0.0 {
