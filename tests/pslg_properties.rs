@@ -409,3 +409,31 @@ fn classic_shapes_have_the_expected_meshes() {
         "box in box: vertex on a segment"
     );
 }
+
+/// Nearly collinear points (within 1e-9 of a line) with segments that overlap and cross at tiny
+/// angles. Regression: the rounded crossing points bent the segments across each other again
+/// and again, and segment insertion never ended.
+#[test]
+fn nearly_collinear_crossing_segments_terminate() {
+    let xs = [
+        0.633788, 0.662119, 0.361759, 0.105775, 0.966813, 0.503565, 0.429944, 0.824995, 0.049885,
+        0.966744, 0.160581, 0.808613, 0.812349, 0.652578, 0.330774, 0.29776, 0.809759, 0.43568,
+    ];
+    // y = x / 2 plus up to 1e-9.
+    let offsets = [
+        6.02891e-10, 1.97213e-10, 5.63818e-10, 5.07482e-10, 4.73215e-10, 4.34623e-10, 1.33595e-10,
+        3.2711e-11, 9.94037e-10, 7.13291e-10, 1.81811e-10, 7.5719e-11, 6.90371e-10, 2.5255e-11,
+        2.30275e-10, 9.14682e-10, 2.03213e-10, 9.37895e-10,
+    ];
+    let points: Vec<[f64; 2]> = xs.iter().zip(offsets).map(|(&x, o)| [x, 0.5 * x + o]).collect();
+    let segments = vec![
+        [12, 5], [15, 14], [10, 5], [11, 16], [6, 3], [6, 3], [11, 17], [15, 3], [16, 0], [15, 15],
+        [15, 4], [13, 4], [16, 3], [13, 16], [14, 0], [4, 4], [11, 13], [8, 10],
+    ];
+    let input = common::MeshInput { segments, ..common::MeshInput::from_points(points) };
+    for switches in ["pzQ", "pczQ"] {
+        let out = ours(switches, &input).unwrap_or_else(|e| panic!("\"{switches}\": {e}"));
+        let mesh = MeshView::of(&out).unwrap_or_else(|e| panic!("\"{switches}\": {e}"));
+        check_constrained_delaunay(&mesh).unwrap_or_else(|e| panic!("\"{switches}\": {e}"));
+    }
+}

@@ -828,3 +828,24 @@ fn random_crossings_and_vertices_on_segments_refine_correctly() {
         }
     }
 }
+
+/// A domain a hair's breadth wide (points within 1e-9 of a line, `c`) needs about a billion
+/// triangles for any minimum angle: refinement stops at its runaway limit with a warning and a
+/// valid mesh, within seconds, instead of filling the memory.
+#[test]
+fn a_domain_too_thin_for_the_angle_stops_with_a_warning() {
+    let points: Vec<[f64; 2]> = (0..12)
+        .map(|i| {
+            let x = (i * 37 % 12) as f64 / 11.0;
+            [x, 0.5 * x + 1e-9 * ((i * 5 % 7) as f64 / 7.0)]
+        })
+        .collect();
+    let input = MeshInput::from_points(points);
+    let pslg = Pslg { convex: true, ..Pslg::new("nearly collinear points".into(), input) };
+    let (out, warnings) = refined(&pslg, "pczqQ");
+    assert!(
+        warnings.iter().any(|w| w.contains("far more than this input")),
+        "{warnings:?}"
+    );
+    MeshView::of(&out).unwrap_or_else(|e| panic!("{e}"));
+}

@@ -19,7 +19,7 @@
 //! quadrilateral is convex, re-queue it otherwise; then the new edges are made locally Delaunay
 //! by Lawson flips that never cross a segment (Chew 1989; Lee and Lin 1986).
 
-use std::collections::VecDeque;
+use std::collections::{HashSet, VecDeque};
 
 use crate::algorithms::delaunay::{Inserter, Location};
 use crate::geometry::{Point, Predicates};
@@ -73,6 +73,10 @@ pub struct Constrainer<P: Predicates> {
     pub split_segments: bool,
     /// Scratch space of segment insertion, reused from segment to segment.
     scratch: Scratch,
+    /// Pairs of segment ids (smaller first) that have crossed: two straight segments cross at
+    /// most once, so a second crossing means they are nearly collinear and a rounded crossing
+    /// point bent one across the other again.
+    crossed_pairs: HashSet<(u32, u32)>,
 }
 
 /// Buffers of segment insertion, kept between segments so that inserting one allocates nothing.
@@ -151,6 +155,7 @@ impl<P: Predicates> Constrainer<P> {
             ends: Vec::new(),
             split_segments: false,
             scratch: Scratch::default(),
+            crossed_pairs: HashSet::new(),
         }
     }
 
@@ -225,6 +230,15 @@ impl<P: Predicates> Constrainer<P> {
                     // Read the crossed segment now: making the crossing vertex may rewrite `e`.
                     let mesh = &self.inserter.mesh;
                     let (u, v, other) = (mesh.origin(e), mesh.dest(e), mesh.segment_of(e));
+                    if !self.crossed_pairs.insert((id.min(other), id.max(other))) {
+                        // They crossed already: nearly collinear. Rather than a cascade of new
+                        // crossing points, this piece goes through the crossed edge's end
+                        // nearer to it, on the other segment.
+                        let w = if self.orient(a, b, u).abs() <= self.orient(a, b, v).abs() { u } else { v };
+                        work.push((w, b, id));
+                        work.push((a, w, id));
+                        continue;
+                    }
                     match self.split_at_crossing(a, b, e) {
                         CrossingPoint::New(p) | CrossingPoint::Existing(p) => {
                             // The two pieces bend slightly at the rounded crossing point.

@@ -37,6 +37,11 @@ const STRAIGHT_BUDGET_PER_TRIANGLE: u64 = 64;
 /// If that is not enough, the straight run may go on to this many new vertices per triangle of
 /// the mesh refined to the guaranteed angle.
 const GUARANTEED_MULTIPLE: u64 = 4;
+/// A refinement is stopped as a runaway beyond this many new vertices per triangle of the
+/// unrefined mesh plus what the area bounds ask for (inputs with many tiny angles need about 100),
+/// and not below this many in all (a few seconds of work).
+const RUNAWAY_PER_TRIANGLE: u64 = 1000;
+const RUNAWAY_MINIMUM: u64 = 1_000_000;
 /// Failing that, the mesh refined to the guaranteed angle goes on toward the asked one with a
 /// budget of this many new vertices per triangle it has (plus a few).
 const UNGUARANTEED_BUDGET_PER_TRIANGLE: u64 = 2;
@@ -208,6 +213,9 @@ pub struct Refiner<'r, 'q, P: Predicates> {
     /// Bad triangles and segments left alone because splitting them would make too short an edge.
     skipped: u64,
     cancelled: bool,
+    /// Where a run is stopped as a runaway (see [`Self::run`]), and whether it was.
+    runaway_limit: Option<u64>,
+    ran_away: bool,
     polls: u32,
 }
 
@@ -252,6 +260,8 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
             report: Report::default(),
             skipped: 0,
             cancelled: false,
+            runaway_limit: None,
+            ran_away: false,
             polls: 0,
         };
         refiner.set_angle(quality.min_angle.unwrap_or(0.0));
@@ -268,11 +278,26 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
 
     /// Refines until no subsegment is encroached and no triangle is bad (or a limit stops it).
     pub fn run(mut self) -> Report {
+        // Without the user's own test or budget: a run that makes far more vertices than the
+        // input and the area bounds account for is stopped (an input a hair's breadth wide, such
+        // as nearly collinear points with `c`, needs about length/width triangles: billions).
+        if self.quality.user_test.is_none() && self.quality.max_steiner.is_none() {
+            let expected = RUNAWAY_PER_TRIANGLE * self.inside_triangle_count() + self.size_estimate();
+            self.runaway_limit = Some(expected.max(RUNAWAY_MINIMUM));
+        }
         match self.quality.min_angle {
             Some(angle) if angle > GUARANTEED_ANGLE => self.refine_beyond_the_guarantee(angle),
             _ => {
-                self.refine_all();
+                self.refine_all_within(None);
             }
+        }
+        if self.ran_away {
+            self.report.warnings.push(format!(
+                "Refinement stopped after {} Steiner points, far more than this input and its area bounds \
+                 account for: some of its features are too thin for the minimum angle (the mesh is valid; \
+                 the S switch sets a limit of your own).",
+                self.report.steiner_points
+            ));
         }
         if self.skipped > 0 {
             self.report.warnings.push(format!(
@@ -295,8 +320,7 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
     fn refine_beyond_the_guarantee(&mut self, angle: f64) {
         let start = self.snapshot();
         self.set_angle(angle);
-        let area_estimate = self.quality.max_area.map_or(0.0, |m| 4.0 * self.domain_area() / m).min(1e9) as u64;
-        let budget = STRAIGHT_BUDGET_PER_TRIANGLE * self.inside_triangle_count() + area_estimate + 1024;
+        let budget = STRAIGHT_BUDGET_PER_TRIANGLE * self.inside_triangle_count() + self.size_estimate() + 1024;
         if self.refine_all_within(Some(self.report.steiner_points + budget)) != Outcome::OutOfBudget {
             return;
         }
@@ -335,17 +359,21 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
     /// Runs [`Self::refine_all`] until it finishes or has made `limit` Steiner points in all (or
     /// fewer under `S`), and says how it ended.
     fn refine_all_within(&mut self, limit: Option<u64>) -> Outcome {
-        let user_limit = self.quality.max_steiner;
-        self.steiner_limit = match (limit, user_limit) {
+        let lower = |a: Option<u64>, b: Option<u64>| match (a, b) {
             (Some(a), Some(b)) => Some(a.min(b)),
             (a, b) => a.or(b),
         };
+        let (user_limit, runaway_limit) = (self.quality.max_steiner, self.runaway_limit);
+        self.steiner_limit = lower(lower(limit, user_limit), runaway_limit);
         self.refine_all();
         if self.cancelled {
             Outcome::Cancelled
         } else if self.bad.is_empty() && self.encroached.is_empty() {
             Outcome::Finished
         } else if user_limit.is_some() && self.steiner_limit == user_limit {
+            Outcome::UserBudget
+        } else if runaway_limit.is_some() && self.steiner_limit == runaway_limit {
+            self.ran_away = true;
             Outcome::UserBudget
         } else {
             Outcome::OutOfBudget
@@ -379,15 +407,28 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         (0..self.cdt.inserter.mesh.triangle_count()).filter(|&t| self.inside(t)).count() as u64
     }
 
-    fn domain_area(&self) -> f64 {
+    /// About how many vertices the area bounds (global, regional, per triangle) ask for: four
+    /// times the number of triangles of the largest allowed areas that cover the domain.
+    fn size_estimate(&self) -> u64 {
         let mesh = &self.cdt.inserter.mesh;
-        (0..mesh.triangle_count())
+        let triangles: f64 = (0..mesh.triangle_count())
             .filter(|&t| self.inside(t))
             .map(|t| {
                 let [a, b, c] = mesh.triangle(t).map(|v| mesh.point(v));
-                0.5 * P::orient2d(a, b, c)
+                let area = 0.5 * P::orient2d(a, b, c);
+                let regional = if self.quality.variable_area {
+                    self.domain.max_area.get(mesh.tag[t as usize] as usize).copied().filter(|&m| m > 0.0)
+                } else {
+                    None
+                };
+                match (self.quality.max_area, regional) {
+                    (Some(m), Some(r)) => area / m.min(r),
+                    (Some(m), None) | (None, Some(m)) => area / m,
+                    (None, None) => 0.0,
+                }
             })
-            .sum()
+            .sum();
+        (4.0 * triangles).min(1e12) as u64
     }
 
     /// Sets the angle bound θ (degrees): the bad-angle test, the lens and the off-centre.
