@@ -121,24 +121,25 @@ fn all_runs(inputs: &[Input]) -> Vec<(Input, Run)> {
         .collect()
 }
 
-/// The number after `a` in `switches`, if any (`pq30a0.001` → 0.001).
-fn global_area(switches: &str) -> Option<f64> {
-    let at = switches.find('a')?;
+/// Whether `letter` is in `switches`, and the number right after it if any (`pq30a0.001`, `a`
+/// → Some(Some(0.001))).
+fn switch_number(switches: &str, letter: char) -> Option<Option<f64>> {
+    let at = switches.find(letter)?;
     let number: String = switches[at + 1..]
         .chars()
         .take_while(|c| c.is_ascii_digit() || *c == '.')
         .collect();
-    number.parse().ok()
+    Some(number.parse().ok())
+}
+
+/// The number after `a` in `switches`, if any (`pq30a0.001` → 0.001).
+fn global_area(switches: &str) -> Option<f64> {
+    switch_number(switches, 'a').flatten()
 }
 
 /// The angle bound of `q` in `switches` (`q` alone: 20°), if any.
 fn min_angle(switches: &str) -> Option<f64> {
-    let at = switches.find('q')?;
-    let number: String = switches[at + 1..]
-        .chars()
-        .take_while(|c| c.is_ascii_digit() || *c == '.')
-        .collect();
-    Some(number.parse().unwrap_or(20.0))
+    switch_number(switches, 'q').map(|number| number.unwrap_or(20.0))
 }
 
 /// `a` without a number: regional (`p`) or per-triangle (`r`) bounds.

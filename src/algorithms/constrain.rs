@@ -696,6 +696,21 @@ mod tests {
     use crate::algorithms::delaunay::order::{hilbert_order, splitmix64};
     use crate::geometry::Exact;
 
+    /// Every real triangle counter-clockwise and every edge that is not a segment locally
+    /// Delaunay (exact predicates).
+    fn assert_constrained_delaunay(m: &Mesh, seed: u64) {
+        for t in m.real_triangles() {
+            let [p, q, r] = m.triangle(t).map(|v| m.point(v));
+            assert!(Exact::orient2d(p, q, r) > 0.0, "seed {seed}: inverted triangle");
+            for e in 3 * t..3 * t + 3 {
+                let o = m.apex(m.twin(e));
+                if o != GHOST && !m.is_segment(e) {
+                    assert!(Exact::incircle(p, q, r, m.point(o)) <= 0.0, "seed {seed}: not CDT");
+                }
+            }
+        }
+    }
+
     fn rand01(s: &mut u64) -> f64 {
         splitmix64(s) as f64 / u64::MAX as f64
     }
@@ -744,16 +759,7 @@ mod tests {
                 if let Some(e) = m.find_edge(a, b) {
                     assert!(m.is_segment(e), "seed {seed}: segment {a}-{b} not marked");
                 }
-                for t in m.real_triangles() {
-                    let [p, q, r] = m.triangle(t).map(|v| m.point(v));
-                    assert!(Exact::orient2d(p, q, r) > 0.0, "seed {seed}: inverted triangle");
-                    for e in 3 * t..3 * t + 3 {
-                        let o = m.apex(m.twin(e));
-                        if o != GHOST && !m.is_segment(e) {
-                            assert!(Exact::incircle(p, q, r, m.point(o)) <= 0.0, "seed {seed}: not CDT");
-                        }
-                    }
-                }
+                assert_constrained_delaunay(m, seed);
                 for e in 0..m.corners.len() as u32 {
                     if m.origin(e) != GHOST && m.dest(e) != GHOST {
                         assert_eq!(m.vertex_edge[m.origin(e) as usize] == NONE, false);
@@ -802,16 +808,7 @@ mod tests {
             }
             let m = &cdt.inserter.mesh;
             assert_eq!(m.corners.len(), tri_corner_count(n, m), "seed {seed}: no new vertices expected");
-            for t in m.real_triangles() {
-                let [p, q, r] = m.triangle(t).map(|v| m.point(v));
-                assert!(Exact::orient2d(p, q, r) > 0.0, "seed {seed}: inverted triangle");
-                for e in 3 * t..3 * t + 3 {
-                    let o = m.apex(m.twin(e));
-                    if o != GHOST && !m.is_segment(e) {
-                        assert!(Exact::incircle(p, q, r, m.point(o)) <= 0.0, "seed {seed}: not CDT");
-                    }
-                }
-            }
+            assert_constrained_delaunay(m, seed);
         }
     }
 
