@@ -160,6 +160,7 @@ struct Snapshot<P: Predicates> {
     kinds: Vec<VertexKind>,
     steiner_points: u64,
     skipped: u64,
+    kept_whole: u64,
     unsplittable: HashSet<(u32, u32)>,
 }
 
@@ -212,6 +213,9 @@ pub struct Refiner<'r, 'q, P: Predicates> {
     report: Report,
     /// Bad triangles and segments left alone because splitting them would make too short an edge.
     skipped: u64,
+    /// Bad triangles left alone because splitting them needs a vertex on a segment that `Y`/`YY`
+    /// keep whole.
+    kept_whole: u64,
     cancelled: bool,
     /// Where a run is stopped as a runaway (see [`Self::run`]), and whether it was.
     runaway_limit: Option<u64>,
@@ -259,6 +263,7 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
             unsplittable: HashSet::new(),
             report: Report::default(),
             skipped: 0,
+            kept_whole: 0,
             cancelled: false,
             runaway_limit: None,
             ran_away: false,
@@ -304,6 +309,13 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
                 "Refinement left {} triangles or segments unsplit: the precision of floating-point numbers is \
                  exhausted near some vertices. The mesh is valid but may have angles below the minimum there.",
                 self.skipped
+            ));
+        }
+        if self.kept_whole > 0 {
+            self.report.warnings.push(format!(
+                "Refinement left {} bad triangles unsplit: that needs new vertices on segments, which the Y switch \
+                 forbids. The mesh is valid but may have angles below the minimum or triangles above the maximum area.",
+                self.kept_whole
             ));
         }
         self.report
@@ -388,6 +400,7 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
             kinds: self.kinds.clone(),
             steiner_points: self.report.steiner_points,
             skipped: self.skipped,
+            kept_whole: self.kept_whole,
             unsplittable: self.unsplittable.clone(),
         }
     }
@@ -398,6 +411,7 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         self.kinds = snapshot.kinds;
         self.report.steiner_points = snapshot.steiner_points;
         self.skipped = snapshot.skipped;
+        self.kept_whole = snapshot.kept_whole;
         self.unsplittable = snapshot.unsplittable;
         self.encroached.clear();
         self.bad.clear();
@@ -846,9 +860,19 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
                     self.skipped += 1; // precision exhausted here
                     return;
                 }
-                let encroached = self.encroached_by(x, location);
+                let mut encroached = self.encroached_by(x, location);
+                // Subsegments that `Y`/`YY` keep whole cannot be protected by splitting them:
+                // the point goes in all the same if it makes no triangle worse than the bad one
+                // (else the triangles along such a boundary could never improve), and the mesh
+                // stays constrained Delaunay.
+                let kept_whole = encroached.iter().any(|&(_, _, e)| !self.may_split(e));
+                encroached.retain(|&(_, _, e)| self.may_split(e));
                 if !encroached.is_empty() {
                     self.split_instead(&encroached, bad);
+                    return;
+                }
+                if kept_whole && self.worst_triangle_made(x) < min_angle_sin2(corners.map(|v| self.pt(v))) {
+                    self.kept_whole += 1;
                     return;
                 }
                 if self.too_close(x, location) {
@@ -878,6 +902,8 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         }
         if self.split_encroached() > 0 {
             self.bad.push(bad);
+        } else if subsegments.iter().all(|&(_, _, e)| !self.may_split(e)) {
+            self.kept_whole += 1;
         } else {
             self.skipped += 1;
         }
@@ -1014,6 +1040,22 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         self.cavity = seen;
         found
     }
+
+    /// The quality ([`min_angle_sin2`]) of the worst triangle that inserting `x` makes: `x`
+    /// joined to the edges around the cavity that [`Self::encroached_by`] found for it.
+    fn worst_triangle_made(&self, x: Point) -> f64 {
+        let mesh = &self.cdt.inserter.mesh;
+        let mut worst = f64::INFINITY;
+        for &t in &self.cavity {
+            for e in 3 * t..3 * t + 3 {
+                if !mesh.is_segment(e) && self.cavity.contains(&triangle_of(mesh.twin(e))) {
+                    continue;
+                }
+                worst = worst.min(min_angle_sin2([mesh.point(mesh.origin(e)), mesh.point(mesh.dest(e)), x]));
+            }
+        }
+        worst
+    }
 }
 
 /// Where segments `a` and `b` cross (in floating point), if they do.
@@ -1028,6 +1070,17 @@ fn crossing_point(a: [Point; 2], b: [Point; 2]) -> Option<Point> {
     let s = (f[0] * e[1] - f[1] * e[0]) / denominator;
     let t = (f[0] * d[1] - f[1] * d[0]) / denominator;
     ((0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&t)).then(|| [a[0][0] + s * d[0], a[0][1] + s * d[1]])
+}
+
+/// The squared sine of the smallest angle of triangle (a, b, c), which grows with that angle
+/// (at most 60°): twice the area over the product of the two longest edges is the sine of the
+/// angle between them, the one opposite the shortest edge.
+fn min_angle_sin2([a, b, c]: [Point; 3]) -> f64 {
+    let sq = |p: Point, q: Point| (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2);
+    let (ab, bc, ca) = (sq(a, b), sq(b, c), sq(c, a));
+    let cross = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    let longest_two = ab * bc * ca / ab.min(bc).min(ca);
+    if longest_two > 0.0 { cross * cross / longest_two } else { 0.0 }
 }
 
 #[cfg(test)]
