@@ -58,7 +58,7 @@ fn delaunay_with<P: Predicates>(options: &Options, mut points: Vec<Point>) -> Tr
                     Err(given_back) => points = given_back,
                 }
             }
-            let order = order::hilbert_order(&points);
+            let order = order::multiscale_order(&points);
             delaunay::triangulate::<P>(points, &order)
         }
     }

@@ -14,7 +14,7 @@
 //! tangents.
 
 use super::{triangulate_in_order, Triangulation};
-use crate::algorithms::delaunay::order::hilbert_order;
+use crate::algorithms::delaunay::order::multiscale_order;
 use crate::geometry::{Point, Predicates};
 use crate::mesh::{Mesh, GHOST, NONE};
 
@@ -29,7 +29,7 @@ struct Half {
 
 fn triangulate_half<P: Predicates>(points: &[Point], ids: &[u32]) -> Option<Half> {
     let local_points: Vec<Point> = ids.iter().map(|&v| points[v as usize]).collect();
-    let order = hilbert_order(&local_points);
+    let order = multiscale_order(&local_points);
     let sorted: Vec<Point> = order.iter().map(|&i| local_points[i as usize]).collect();
     let global = |i: u32| ids[order[i as usize] as usize];
     let (mut mesh, duplicates) = triangulate_in_order::<P>(sorted);
@@ -94,7 +94,9 @@ pub fn triangulate_two_halves<P: Predicates>(points: Vec<Point>) -> Result<Trian
     mesh.points = points;
     let mut merger = Merger::<P> { mesh, _p: Default::default() };
     merger.merge(offset / 3);
-    Ok(Triangulation { mesh: merger.mesh, duplicate_of })
+    let mut triangulation = Triangulation { mesh: merger.mesh, duplicate_of };
+    triangulation.keep_first_copies();
+    Ok(triangulation)
 }
 
 /// The hull of one half, read off its ghost triangles.

@@ -6,8 +6,10 @@
 //! analysis). Points outside the hull land in ghost triangles (see [`crate::mesh`]), whose
 //! "circumcircle" is the half-plane beyond their hull edge, so hull growth is ordinary flipping.
 //!
-//! The default order is a Hilbert curve; `i` uses a biased randomized insertion order
-//! ([`order::brio_order`]). Both give the same triangulation for points in general position.
+//! The default order is multiscale: random rounds growing eightfold, each along a Hilbert curve
+//! ([`order::multiscale_order`]); `i` uses rounds that double, a biased randomized insertion
+//! order ([`order::brio_order`]). Both give the same triangulation for points in general
+//! position.
 
 pub mod merge;
 pub mod order;
@@ -41,6 +43,40 @@ impl Triangulation {
     /// True when no triangle could be formed (fewer than three distinct, non-collinear points).
     pub fn is_degenerate(&self) -> bool {
         self.mesh.triangle_count() == 0
+    }
+
+    /// Makes the first copy (smallest index) of every duplicated point the one in the mesh, as
+    /// Triangle's documentation of `j` says, whichever copy the insertion order met first: the
+    /// copies have the same coordinates, so the survivor's id is swapped for the first copy's.
+    pub fn keep_first_copies(&mut self) {
+        let mut first_copy: std::collections::HashMap<u32, u32> = std::collections::HashMap::new();
+        for (v, &u) in self.duplicate_of.iter().enumerate() {
+            let v = v as u32;
+            if u != NONE && v < u && first_copy.get(&u).is_none_or(|&w| v < w) {
+                first_copy.insert(u, v);
+            }
+        }
+        if first_copy.is_empty() {
+            return;
+        }
+        for c in self.mesh.corners.iter_mut() {
+            if let Some(&w) = first_copy.get(c) {
+                *c = w;
+            }
+        }
+        if !self.mesh.vertex_edge.is_empty() {
+            for (&u, &w) in &first_copy {
+                self.mesh.vertex_edge.swap(u as usize, w as usize);
+            }
+        }
+        for (v, u) in self.duplicate_of.iter_mut().enumerate() {
+            if let Some(&w) = first_copy.get(u) {
+                *u = if v as u32 == w { NONE } else { w };
+            }
+        }
+        for (&u, &w) in &first_copy {
+            self.duplicate_of[u as usize] = w;
+        }
     }
 }
 
@@ -271,7 +307,9 @@ pub fn triangulate<P: Predicates>(points: Vec<Point>, order: &[u32]) -> Triangul
             duplicate_of[order[i] as usize] = order[u as usize];
         }
     }
-    Triangulation { mesh, duplicate_of }
+    let mut triangulation = Triangulation { mesh, duplicate_of };
+    triangulation.keep_first_copies();
+    triangulation
 }
 
 /// Triangulates `points` inserting them in index order; returns the mesh and, per vertex, the
@@ -345,7 +383,7 @@ mod tests {
         let pts: Vec<Point> = (0..2000)
             .map(|_| [order::splitmix64(&mut s) as f64 / 1e19, order::splitmix64(&mut s) as f64 / 1e19])
             .collect();
-        for ord in [order::hilbert_order(&pts), order::brio_order(&pts, 3)] {
+        for ord in [order::hilbert_order(&pts), order::brio_order(&pts, 3), order::multiscale_order(&pts)] {
             let t = triangulate::<Exact>(pts.clone(), &ord);
             check_delaunay(&t);
             // Euler: for n points with h on the hull, 2n - 2 - h triangles.
@@ -364,13 +402,16 @@ mod tests {
         }
         pts.push([3.0, 3.0]);
         pts.push([0.0, 0.0]);
-        let ord = order::hilbert_order(&pts);
+        // Inserted last copy first: the first copy survives all the same.
+        let mut ord: Vec<u32> = order::hilbert_order(&pts);
+        ord.reverse();
         let t = triangulate::<Exact>(pts, &ord);
         check_delaunay(&t);
         assert_eq!(t.mesh.real_triangles().count(), 2 * 81);
-        // The first of two duplicates survives.
         assert_eq!(t.duplicate_of[100], 33);
         assert_eq!(t.duplicate_of[101], 0);
+        assert!(t.duplicate_of[33] == NONE && t.duplicate_of[0] == NONE);
+        assert!(t.mesh.corners.contains(&33) && !t.mesh.corners.contains(&100));
         let line: Vec<Point> = (0..10).map(|i| [i as f64, 2.0 * i as f64]).collect();
         let ord = order::hilbert_order(&line);
         assert!(triangulate::<Exact>(line, &ord).is_degenerate());
