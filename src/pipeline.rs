@@ -204,6 +204,10 @@ fn run<P: Predicates>(
 }
 
 /// Inserts the input segments (skipping those with a bad or repeated endpoint, with a warning).
+/// A segment given again (the same two vertices, either way round) is inserted once: a second
+/// insertion would find the first one's chain, which `s` builds from midpoints that rounding
+/// may put an ulp off the line, so that the second copy would cross it at slivers; where markers
+/// differ, a later non-zero marker replaces a zero one, as for overlapping segments.
 fn insert_segments<P: Predicates>(
     cdt: &mut Constrainer<P>,
     input: &Input<'_>,
@@ -212,6 +216,7 @@ fn insert_segments<P: Predicates>(
     warnings: &mut Vec<String>,
 ) {
     let n = input.point_count() as i64;
+    let mut inserted: std::collections::HashMap<(u32, u32), u32> = std::collections::HashMap::new();
     for (i, s) in input.segments.chunks_exact(2).enumerate() {
         let marker = input.segment_markers.map_or(0, |m| m[i]);
         let ends = [s[0] as i64 - base as i64, s[1] as i64 - base as i64];
@@ -242,7 +247,14 @@ fn insert_segments<P: Predicates>(
             ));
             continue;
         }
+        if let Some(&id) = inserted.get(&(a.min(b), a.max(b))) {
+            if cdt.markers[id as usize] == 0 {
+                cdt.markers[id as usize] = marker;
+            }
+            continue;
+        }
         let id = cdt.new_segment_id(marker, a, b);
+        inserted.insert((a.min(b), a.max(b)), id);
         cdt.insert_segment(a, b, id);
     }
 }

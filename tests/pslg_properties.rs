@@ -437,3 +437,40 @@ fn nearly_collinear_crossing_segments_terminate() {
         check_constrained_delaunay(&mesh).unwrap_or_else(|e| panic!("\"{switches}\": {e}"));
     }
 }
+
+/// A segment given twice (either way round, as PSLGs assembled from polygons often have) is
+/// one segment: the mesh is the one of the PSLG without the repeats, with `s` (whose midpoints
+/// may lie an ulp off the line, so that a second insertion would cross the first's chain at
+/// slivers) and with refinement (which ran away on such slivers).
+#[test]
+fn repeated_segments_are_inserted_once() {
+    for seed in 0..20 {
+        for pslg in [pslg::polygon_with_holes(seed), pslg::crossing_segments(seed, 8, 5)] {
+            let mut repeated = pslg.clone();
+            let input = &mut repeated.input;
+            let count = input.segments.len();
+            for s in 0..count {
+                if s % 2 == 0 {
+                    let [a, b] = input.segments[s];
+                    input.segments.push(if s % 4 == 0 { [b, a] } else { [a, b] });
+                    if let Some(markers) = input.segment_markers.as_mut() {
+                        markers.push(markers[s]);
+                    }
+                }
+            }
+            repeated.name = format!("{} with repeated segments", pslg.name);
+            let c = if pslg.convex { "c" } else { "" };
+            for switches in ["pszQ", "pzQ", "psq25zQ"] {
+                let switches = format!("p{c}{}", &switches[1..]);
+                let once = ours(&switches, &pslg.input_for(&switches)).unwrap();
+                let twice = check(&repeated, &switches);
+                assert_eq!(
+                    common::checks::triangle_set(&once),
+                    common::checks::triangle_set(&twice),
+                    "{}, \"{switches}\": the repeats changed the mesh",
+                    repeated.name
+                );
+            }
+        }
+    }
+}
