@@ -16,26 +16,68 @@ use crate::geometry::Point;
 const HILBERT_BITS: u32 = 16;
 
 /// Position of cell `(x, y)` along the Hilbert curve filling a `2^HILBERT_BITS` square grid.
-fn hilbert_index(mut x: u32, mut y: u32) -> u32 {
-    let n: u32 = 1 << HILBERT_BITS;
+///
+/// Four bits of each coordinate at a time through [`HILBERT_TABLE`]: no branches, whose
+/// outcomes (the coordinates' bits) would be unpredictable.
+fn hilbert_index(x: u32, y: u32) -> u32 {
     let mut d: u32 = 0;
-    let mut s = n / 2;
-    while s > 0 {
-        let rx = (x & s) != 0;
-        let ry = (y & s) != 0;
-        d = d.wrapping_add(s.wrapping_mul(s).wrapping_mul((3 * rx as u32) ^ ry as u32));
-        // Rotate the quadrant so that the curve's sub-square is in standard position.
-        if !ry {
-            if rx {
-                x = n - 1 - x;
-                y = n - 1 - y;
-            }
-            std::mem::swap(&mut x, &mut y);
-        }
-        s /= 2;
+    let mut state = 0usize;
+    let mut shift = HILBERT_BITS;
+    while shift > 0 {
+        shift -= 4;
+        let entry = HILBERT_TABLE[state][(((x >> shift) & 15) << 4 | ((y >> shift) & 15)) as usize];
+        d = (d << 8) | u32::from(entry & 0xff);
+        state = usize::from(entry >> 8);
     }
     d
 }
+
+/// The Hilbert curve one level (one bit of x and y) at a time: the sub-square's orientation is
+/// one of four transformations of the cell coordinates — 0: as is, 1: transposed (x and y
+/// swapped), 2: anti-transposed (swapped and complemented), 3: both complemented (turned by
+/// 180°). In the sub-square's frame, quadrant (rx, ry) comes at position (3·rx) xor ry, and
+/// the next level is transposed when ry = 0 and rx = 0, anti-transposed when ry = 0 and rx = 1.
+/// Returns (position, next orientation).
+const fn hilbert_step(state: usize, bx: u32, by: u32) -> (u32, usize) {
+    let (rx, ry) = match state {
+        0 => (bx, by),
+        1 => (by, bx),
+        2 => (1 - by, 1 - bx),
+        _ => (1 - bx, 1 - by),
+    };
+    // Composing the orientation with a transposition or an anti-transposition.
+    const TRANSPOSED: [usize; 4] = [1, 0, 3, 2];
+    const ANTI_TRANSPOSED: [usize; 4] = [2, 3, 0, 1];
+    let next = match (rx, ry) {
+        (0, 0) => TRANSPOSED[state],
+        (1, 0) => ANTI_TRANSPOSED[state],
+        _ => state,
+    };
+    ((3 * rx) ^ ry, next)
+}
+
+/// Four levels of [`hilbert_step`] at once: per orientation and 4 bits of x, 4 bits of y (x
+/// high), the 8 bits of position (low byte) and the orientation after them (high byte).
+const HILBERT_TABLE: [[u16; 256]; 4] = {
+    let mut table = [[0u16; 256]; 4];
+    let mut start = 0;
+    while start < 4 {
+        let mut xy = 0;
+        while xy < 256 {
+            let (mut state, mut d, mut level) = (start, 0u32, 4);
+            while level > 0 {
+                level -= 1;
+                let (digit, next) = hilbert_step(state, (xy as u32 >> (4 + level)) & 1, (xy as u32 >> level) & 1);
+                d = (d << 2) | digit;
+                state = next;
+            }
+            table[start][xy] = (d as u16) | ((state as u16) << 8);
+            xy += 1;
+        }
+        start += 1;
+    }
+    table
+};
 
 /// Hilbert-curve key of every point, over the points' bounding box.
 fn hilbert_keys(points: &[Point]) -> Vec<u32> {
@@ -161,20 +203,21 @@ mod tests {
 
     #[test]
     fn hilbert_curve_visits_neighbouring_cells() {
-        // Consecutive indices on the curve are adjacent grid cells.
-        let n = 8u32;
-        let mut by_index = vec![(0u32, 0u32); (n * n) as usize];
-        for x in 0..n {
-            for y in 0..n {
-                // Scale the 8x8 grid into the top-left corner of the full grid.
-                let d = hilbert_index(x, y);
-                assert!(d < n * n, "cells of the first sub-square come first");
-                by_index[d as usize] = (x, y);
+        // Consecutive positions are adjacent cells: in the first 64×64 sub-square (which the
+        // curve fills before leaving it), and on the coarse grid of 16×16 blocks of 4096² cells.
+        for (n, scale) in [(64u32, 0u32), (16, HILBERT_BITS - 4)] {
+            let mut by_position = vec![(0u32, 0u32); (n * n) as usize];
+            for x in 0..n {
+                for y in 0..n {
+                    let d = hilbert_index(x << scale, y << scale) >> (2 * scale);
+                    assert!(d < n * n, "cells of the first sub-square come first");
+                    by_position[d as usize] = (x, y);
+                }
             }
-        }
-        for w in by_index.windows(2) {
-            let dist = w[0].0.abs_diff(w[1].0) + w[0].1.abs_diff(w[1].1);
-            assert_eq!(dist, 1);
+            for w in by_position.windows(2) {
+                let dist = w[0].0.abs_diff(w[1].0) + w[0].1.abs_diff(w[1].1);
+                assert_eq!(dist, 1, "{w:?}");
+            }
         }
     }
 
