@@ -849,3 +849,36 @@ fn a_domain_too_thin_for_the_angle_stops_with_a_warning() {
     );
     MeshView::of(&out).unwrap_or_else(|e| panic!("{e}"));
 }
+
+/// A vertex within rounding of a segment without lying on it in exact arithmetic (the lattice
+/// point (0.4, 0.4) and the segment (0.8, 0)–(0.2, 0.6), in doubles) is on it for refinement:
+/// left apart, the two would encroach on each other without end (Triangle stops with "Ran out
+/// of precision"; we used to fill the sliver between them up to the runaway limit, or leave a 0°
+/// triangle there). Here the vertex also ends a segment from the same corner, at an angle of
+/// 10^-16 radians to the other.
+#[test]
+fn a_vertex_within_rounding_of_a_segment_is_on_it() {
+    let lattice = |points: &[[i32; 2]]| points.iter().map(|p| [p[0] as f64 / 5.0, p[1] as f64 / 5.0]).collect::<Vec<_>>();
+    let cases = [
+        // Only the segment and the vertex: no segment ends at the vertex.
+        (lattice(&[[4, 0], [1, 3], [2, 2], [0, 0], [5, 5]]), vec![[0, 1]]),
+        // The vertex ends a second segment from the same corner, nearly along the first.
+        (
+            lattice(&[[4, 0], [1, 3], [5, 2], [0, 3], [3, 2], [0, 0], [2, 0], [4, 2], [2, 2], [4, 5], [0, 5], [1, 0], [0, 1], [0, 4]]),
+            vec![[2, 12], [1, 8], [11, 13], [1, 7], [0, 1]],
+        ),
+    ];
+    for (points, segments) in cases {
+        let input = MeshInput { segments, ..MeshInput::from_points(points) };
+        let pslg = Pslg { convex: true, ..Pslg::new("lattice with a vertex by a segment".into(), input) };
+        let switches = "pczqQ";
+        let (out, warnings) = refined(&pslg, switches);
+        assert!(warnings.is_empty(), "{warnings:?}");
+        checked(&pslg, switches, &out, |mesh, _| {
+            assert!(mesh.triangles.len() < 200, "{} triangles", mesh.triangles.len());
+            let hulled = pslg::with_hull_segments(&pslg.input);
+            let chains = segment_chains(&hulled, mesh, true).unwrap_or_else(|e| panic!("{e}"));
+            check_angles(mesh, &hulled, &chains, 20.0, Exemptions::ShellRule).unwrap_or_else(|e| panic!("{e}"));
+        });
+    }
+}

@@ -290,6 +290,7 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
             let expected = RUNAWAY_PER_TRIANGLE * self.inside_triangle_count() + self.size_estimate();
             self.runaway_limit = Some(expected.max(RUNAWAY_MINIMUM));
         }
+        self.snap_vertices_onto_segments();
         match self.quality.min_angle {
             Some(angle) if angle > GUARANTEED_ANGLE => self.refine_beyond_the_guarantee(angle),
             _ => {
@@ -454,6 +455,46 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         // segment hiding a new point from its triangle is split then).
         self.lens_cos2 = (theta < std::f64::consts::FRAC_PI_4 && !self.conforming).then(|| (2.0 * theta).cos().powi(2));
         self.off_center = if theta > 0.0 { 0.475 * ((1.0 + cos) / (1.0 - cos)).sqrt() } else { f64::INFINITY };
+    }
+
+    /// Makes every vertex that lies within the floor distance of a subsegment, between its
+    /// ends, a vertex of it: the subsegment is flipped away and the two edges to the vertex
+    /// become the segment. Such a vertex is on the segment at the resolution refinement works
+    /// at (two segments at an angle of 10^-16 radians, which rounding makes of one line through
+    /// a vertex): left apart, the vertex encroaches the segment, every split point on it
+    /// encroaches back, and refinement would fill the sliver between them with vertices down to
+    /// the floor (Triangle stops with "Ran out of precision"). Subsegments on the hull are left
+    /// as they are (the runaway limit of [`Self::run`] still bounds the work there).
+    fn snap_vertices_onto_segments(&mut self) {
+        let mesh = &self.cdt.inserter.mesh;
+        let mut work: Vec<u32> = (0..mesh.corners.len() as u32).filter(|&e| mesh.is_segment(e)).collect();
+        while let Some(e) = work.pop() {
+            let mesh = &self.cdt.inserter.mesh;
+            if !mesh.is_segment(e) || mesh.is_ghost(triangle_of(e)) || mesh.is_ghost(triangle_of(mesh.twin(e))) {
+                continue;
+            }
+            let (u, v, w, z) = (mesh.origin(e), mesh.dest(e), mesh.apex(e), mesh.apex(mesh.twin(e)));
+            let (pu, pv, pw, pz) = (mesh.point(u), mesh.point(v), mesh.point(w), mesh.point(z));
+            let length2 = (pv[0] - pu[0]).powi(2) + (pv[1] - pu[1]).powi(2);
+            let height = P::orient2d(pu, pv, pw); // |uv| times w's distance from the line
+            let along = |a: Point, b: Point| (pw[0] - a[0]) * (b[0] - a[0]) + (pw[1] - a[1]) * (b[1] - a[1]);
+            let near_end = |a: Point| (pw[0] - a[0]).powi(2) + (pw[1] - a[1]).powi(2) < self.floor2;
+            let on_segment = height * height < self.floor2 * length2 && along(pu, pv) > 0.0 && along(pv, pu) > 0.0;
+            // The flip needs the quadrilateral u, z, v, w convex: z–w crosses u–v.
+            let convex = P::orient2d(pz, pw, pu) > 0.0 && P::orient2d(pz, pw, pv) < 0.0;
+            if !on_segment || near_end(pu) || near_end(pv) || !convex {
+                continue;
+            }
+            let id = mesh.segment_of(e);
+            let mesh = &mut self.cdt.inserter.mesh;
+            mesh.flip(e);
+            for (a, b) in [(u, w), (w, v)] {
+                if let Some(h) = mesh.find_edge(a, b) {
+                    mesh.set_segment(h, id);
+                    work.extend([h, mesh.twin(h)]);
+                }
+            }
+        }
     }
 
     /// Splits encroached subsegments, then bad triangles, until none is left or a limit stops.

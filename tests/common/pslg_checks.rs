@@ -257,9 +257,15 @@ pub fn effective_segments(input: &MeshInput) -> Vec<(usize, [usize; 2])> {
 /// up to rounding.
 const NEW_VERTEX_TOLERANCE: f64 = 1e-9;
 
+/// Relative tolerance for input vertices on a chain that are not exactly on the segment:
+/// refinement makes a vertex within rounding of a segment (2^-40 of the domain's extent) a vertex
+/// of its chain.
+const SNAPPED_VERTEX_TOLERANCE: f64 = 1.0 / (1u64 << 40) as f64;
+
 /// For each input segment (of a zero-based `input`) that is inserted, the chain of output
 /// vertices along it, from its first to its second endpoint: consecutive chain vertices are
-/// output segments, input vertices on the chain lie exactly on the segment, new vertices (not at
+/// output segments, input vertices on the chain lie exactly on the segment (or within rounding
+/// of it: [`SNAPPED_VERTEX_TOLERANCE`]), new vertices (not at
 /// any input vertex's place) within a small tolerance of it. Checks as well that every input
 /// vertex lying on a segment is on its chain, that segments that cross share a chain vertex, and
 /// that every output segment lies on a chain (or, with `hull_segments`, on the mesh boundary).
@@ -282,10 +288,10 @@ pub fn segment_chains(
         let length2 = d[0] * d[0] + d[1] * d[1];
         let param = |p: Point| ((p[0] - pa[0]) * d[0] + (p[1] - pa[1]) * d[1]) / length2;
         let on_line = |p: Point| {
+            let cross = (p[0] - pa[0]) * d[1] - (p[1] - pa[1]) * d[0];
             if input_places.contains(&bits(p)) {
-                orient2d(pa, pb, p) == 0.0
+                orient2d(pa, pb, p) == 0.0 || cross.abs() <= SNAPPED_VERTEX_TOLERANCE * length2
             } else {
-                let cross = (p[0] - pa[0]) * d[1] - (p[1] - pa[1]) * d[0];
                 cross.abs() <= NEW_VERTEX_TOLERANCE * length2
             }
         };
