@@ -474,3 +474,25 @@ fn repeated_segments_are_inserted_once() {
         }
     }
 }
+
+/// Segments that overlap or pass through vertices only within rounding (lattice coordinates
+/// such as 0.2 are inexact): a vertex within rounding of a segment is on it, so that no third
+/// segment crosses the two at points an ulp apart.
+#[test]
+fn segments_meeting_within_rounding_share_their_vertices() {
+    let pslg = pslg::lattice_with_overlaps();
+    // Not yet with `s`: a midpoint that lands within rounding of another segment is not put on
+    // it, and the two overlapping chains stay apart there.
+    for switches in ["pczQ", "pcjezQ"] {
+        let out = check(&pslg, switches);
+        let mesh = MeshView::of(&out).unwrap();
+        // No two vertices closer than the lattice's scale allows (crossings are at least 1/30
+        // apart here).
+        for (i, p) in mesh.points.iter().enumerate() {
+            for q in &mesh.points[i + 1..] {
+                let d = ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2)).sqrt();
+                assert!(d == 0.0 || d > 1e-3, "\"{switches}\": vertices {p:?} and {q:?} are {d:e} apart");
+            }
+        }
+    }
+}

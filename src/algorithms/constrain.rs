@@ -57,6 +57,9 @@ enum Walk {
     Crosses(u32),
     /// The segment crosses the segment edge `e` (after the crossings before it).
     HitsSegment(u32),
+    /// The edge from the start to the end passed by this vertex within rounding: it was flipped
+    /// away, and the segment goes through the vertex.
+    Through(u32),
 }
 
 #[derive(Clone)]
@@ -200,6 +203,17 @@ impl<P: Predicates> Constrainer<P> {
                     }
                     work.push((c, b, id));
                 }
+                Walk::Through(w) => {
+                    work.push((w, b, id));
+                    work.push((a, w, id));
+                }
+                Walk::Crosses(stop) if stop != b && self.orient(a, b, stop) != 0.0 => {
+                    // The walk stopped at a vertex within rounding of the segment (see
+                    // [`on_line`]): the segment goes through it, and the piece up to it is walked
+                    // again, so that the crossed edges are those of that piece.
+                    work.push((stop, b, id));
+                    work.push((a, stop, id));
+                }
                 Walk::Crosses(stop) => {
                     work.push((stop, b, id));
                     let split = self.split_segments && midpoints_left > 0;
@@ -317,7 +331,13 @@ impl<P: Predicates> Constrainer<P> {
         let mut e = start;
         loop {
             if mesh.dest(e) == b {
-                return Walk::Along(e);
+                let beside = |pu: Point, pv: Point, pw: Point| {
+                    on_line(P::orient2d(pu, pv, pw), pu, pv) && along(pu, pw, pv) && before(pu, pw, pv)
+                };
+                return match self.flip_edge_onto_vertex(e, beside) {
+                    Some(w) => Walk::Through(w),
+                    None => Walk::Along(e),
+                };
             }
             e = mesh.twin(prev(e));
             if e == start {
@@ -332,7 +352,7 @@ impl<P: Predicates> Constrainer<P> {
             let (x, y) = (mesh.dest(e), mesh.apex(e));
             if x != GHOST {
                 let ox = if carried.0 == x { carried.1 } else { P::orient2d(pa, self.pt(x), pb) };
-                if ox == 0.0 && along(pa, self.pt(x), pb) {
+                if on_line(ox, pa, pb) && along(pa, self.pt(x), pb) && before(pa, self.pt(x), pb) {
                     return Walk::Along(e);
                 }
                 if y != GHOST && ox > 0.0 {
@@ -354,6 +374,40 @@ impl<P: Predicates> Constrainer<P> {
             Ok(z) => Walk::Crosses(z),
             Err(h) => Walk::HitsSegment(h),
         }
+    }
+
+    /// If the vertex beside the edge of `e` on either side lies on it as far as `on_edge(u, v,
+    /// w)` tells (within rounding: no vertex lies exactly on an edge), flips the edge away so
+    /// that the vertex joins its ends (Lawson flips then make the other edges around locally
+    /// Delaunay again), and returns the vertex; a segment edge becomes the two edges to the
+    /// vertex. Not when the edge is on the hull or the flip would not be valid.
+    pub fn flip_edge_onto_vertex(&mut self, e: u32, on_edge: impl Fn(Point, Point, Point) -> bool) -> Option<u32> {
+        let mesh = &self.inserter.mesh;
+        for h in [e, mesh.twin(e)] {
+            let f = mesh.twin(h);
+            if mesh.is_ghost(triangle_of(h)) || mesh.is_ghost(triangle_of(f)) {
+                return None;
+            }
+            let (u, v, w, z) = (mesh.origin(h), mesh.dest(h), mesh.apex(h), mesh.apex(f));
+            let (pu, pv, pw, pz) = (mesh.point(u), mesh.point(v), mesh.point(w), mesh.point(z));
+            // The flip needs the quadrilateral u, z, v, w convex: z–w crosses u–v.
+            if !on_edge(pu, pv, pw) || !(P::orient2d(pz, pw, pu) > 0.0 && P::orient2d(pz, pw, pv) < 0.0) {
+                continue;
+            }
+            let id = mesh.segment_of(h);
+            let mesh = &mut self.inserter.mesh;
+            mesh.flip(h);
+            if id != NONE {
+                for (x, y) in [(u, w), (w, v)] {
+                    if let Some(g) = mesh.find_edge(x, y) {
+                        mesh.set_segment(g, id);
+                    }
+                }
+            }
+            self.restore_delaunay(vec![(u, z), (z, v), (v, w), (w, u), (z, w)]);
+            return Some(w);
+        }
+        None
     }
 
     /// The first vertex that lies exactly on the segment from `a` to `b` beyond the segment edge
@@ -677,12 +731,31 @@ fn cross_edges<P: Predicates>(
         let f = mesh.twin(h); // left → right in the next triangle
         let z = mesh.apex(f);
         let oz = P::orient2d(pa, pb, mesh.point(z));
-        if oz == 0.0 {
+        if on_line(oz, pa, pb) {
             return Ok(z);
         }
         // Right → z when z is left of the line, z → left otherwise.
         h = if oz > 0.0 { next(f) } else { prev(f) };
     }
+}
+
+/// Whether a vertex whose orientation with the segment `a`–`b` is `orientation` lies on its
+/// line: exactly, or within rounding (closer than [`SNAP_RELATIVE`] times the segment's
+/// length). Such a vertex splits the segment: kept apart, it and the segment would make a
+/// feature far below the input's scale (a third segment crossing both at points an ulp apart,
+/// where lattice coordinates such as 0.2 and 0.6 make overlapping segments miss each other's
+/// ends by an ulp), which no refinement could resolve. Triangle keeps them apart, and crashes
+/// on some such inputs.
+fn on_line(orientation: f64, a: Point, b: Point) -> bool {
+    let length2 = (b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2);
+    orientation == 0.0 || orientation.abs() <= SNAP_RELATIVE * length2
+}
+
+/// Whether `x`, near the line through `a` and `b`, lies before `b` seen from `a` (an edge from
+/// `a` to a vertex within rounding of the line may pass by `b`).
+fn before(a: Point, x: Point, b: Point) -> bool {
+    let d = [b[0] - a[0], b[1] - a[1]];
+    (x[0] - a[0]) * d[0] + (x[1] - a[1]) * d[1] < d[0] * d[0] + d[1] * d[1]
 }
 
 /// Whether `x`, collinear with the ray from `a` through `b`, lies on that ray's side of `a`.

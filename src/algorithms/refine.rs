@@ -466,32 +466,28 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
     /// the floor (Triangle stops with "Ran out of precision"). Subsegments on the hull are left
     /// as they are (the runaway limit of [`Self::run`] still bounds the work there).
     fn snap_vertices_onto_segments(&mut self) {
+        let floor2 = self.floor2;
+        let on_segment = |pu: Point, pv: Point, pw: Point| {
+            let length2 = (pv[0] - pu[0]).powi(2) + (pv[1] - pu[1]).powi(2);
+            let height = P::orient2d(pu, pv, pw); // |uv| times w's distance from the line
+            let along = |a: Point, b: Point| (pw[0] - a[0]) * (b[0] - a[0]) + (pw[1] - a[1]) * (b[1] - a[1]);
+            let near = |a: Point| (pw[0] - a[0]).powi(2) + (pw[1] - a[1]).powi(2) < floor2;
+            height * height < floor2 * length2 && along(pu, pv) > 0.0 && along(pv, pu) > 0.0 && !near(pu) && !near(pv)
+        };
         let mesh = &self.cdt.inserter.mesh;
         let mut work: Vec<u32> = (0..mesh.corners.len() as u32).filter(|&e| mesh.is_segment(e)).collect();
         while let Some(e) = work.pop() {
             let mesh = &self.cdt.inserter.mesh;
-            if !mesh.is_segment(e) || mesh.is_ghost(triangle_of(e)) || mesh.is_ghost(triangle_of(mesh.twin(e))) {
+            let (u, v) = (mesh.origin(e), mesh.dest(e));
+            if !mesh.is_segment(e) {
                 continue;
             }
-            let (u, v, w, z) = (mesh.origin(e), mesh.dest(e), mesh.apex(e), mesh.apex(mesh.twin(e)));
-            let (pu, pv, pw, pz) = (mesh.point(u), mesh.point(v), mesh.point(w), mesh.point(z));
-            let length2 = (pv[0] - pu[0]).powi(2) + (pv[1] - pu[1]).powi(2);
-            let height = P::orient2d(pu, pv, pw); // |uv| times w's distance from the line
-            let along = |a: Point, b: Point| (pw[0] - a[0]) * (b[0] - a[0]) + (pw[1] - a[1]) * (b[1] - a[1]);
-            let near_end = |a: Point| (pw[0] - a[0]).powi(2) + (pw[1] - a[1]).powi(2) < self.floor2;
-            let on_segment = height * height < self.floor2 * length2 && along(pu, pv) > 0.0 && along(pv, pu) > 0.0;
-            // The flip needs the quadrilateral u, z, v, w convex: z–w crosses u–v.
-            let convex = P::orient2d(pz, pw, pu) > 0.0 && P::orient2d(pz, pw, pv) < 0.0;
-            if !on_segment || near_end(pu) || near_end(pv) || !convex {
-                continue;
-            }
-            let id = mesh.segment_of(e);
-            let mesh = &mut self.cdt.inserter.mesh;
-            mesh.flip(e);
-            for (a, b) in [(u, w), (w, v)] {
-                if let Some(h) = mesh.find_edge(a, b) {
-                    mesh.set_segment(h, id);
-                    work.extend([h, mesh.twin(h)]);
+            if let Some(w) = self.cdt.flip_edge_onto_vertex(e, on_segment) {
+                let mesh = &self.cdt.inserter.mesh;
+                for (a, b) in [(u, w), (w, v)] {
+                    if let Some(h) = mesh.find_edge(a, b) {
+                        work.extend([h, mesh.twin(h)]);
+                    }
                 }
             }
         }

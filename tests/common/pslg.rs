@@ -574,3 +574,24 @@ pub fn square_with_hole(circle_segments: usize) -> Pslg {
         )
     }
 }
+
+/// Points of the lattice with spacing 0.2 on the unit square, and segments between them that
+/// overlap or cross at lattice points. In doubles 0.2, 0.6 and 0.8 are not exact, so the
+/// segment (0, 0.8)–(0.8, 0) misses the lattice points (0.6, 0.2) and (0.2, 0.6) on it by an
+/// ulp, the segment between those overlaps it within rounding, and (0, 1)–(0.6, 0) crosses both
+/// at (0.3, 0.5) at two points an ulp apart (Triangle: "Topological inconsistency after
+/// splitting a segment"). Duplicate points and a segment with equal ends included.
+pub fn lattice_with_overlaps() -> Pslg {
+    let lattice = [
+        [1, 1], [4, 2], [2, 4], [3, 1], [5, 5], [0, 2], [4, 0], [2, 3], [3, 0], [5, 3], [4, 2], [0, 4],
+        [5, 0], [5, 1], [2, 5], [2, 4], [3, 0], [2, 5], [1, 3], [0, 5], [3, 1], [4, 2], [5, 1],
+    ];
+    let segments = vec![
+        [0, 18], [7, 10], [3, 2], [19, 1], [6, 3], [3, 18], [21, 21], [5, 20], [11, 6], [19, 8], [20, 1],
+        [20, 7], [14, 7], [1, 0], [0, 1], [9, 18], [14, 21], [10, 2], [20, 2], [6, 16], [13, 10], [13, 6],
+        [16, 21], [3, 5], [15, 20],
+    ];
+    let points = lattice.iter().map(|p| [p[0] as f64 / 5.0, p[1] as f64 / 5.0]).collect();
+    let input = MeshInput { segments, ..MeshInput::from_points(points) };
+    Pslg { convex: true, ours_only: true, ..Pslg::new("lattice with overlapping segments".into(), input) }
+}

@@ -257,15 +257,16 @@ pub fn effective_segments(input: &MeshInput) -> Vec<(usize, [usize; 2])> {
 /// up to rounding.
 const NEW_VERTEX_TOLERANCE: f64 = 1e-9;
 
-/// Relative tolerance for input vertices on a chain that are not exactly on the segment:
-/// refinement makes a vertex within rounding of a segment (2^-40 of the domain's extent) a vertex
-/// of its chain.
-const SNAPPED_VERTEX_TOLERANCE: f64 = 1.0 / (1u64 << 40) as f64;
+/// Input vertices on a chain need not lie exactly on the segment: one within rounding of it
+/// is a vertex of its chain (closer than 10^-12 of the segment's length with `p`, than 2^-40
+/// of the domain's extent with refinement).
+const SNAPPED_RELATIVE_TO_SEGMENT: f64 = 1e-12;
+const SNAPPED_RELATIVE_TO_EXTENT: f64 = 1.0 / (1u64 << 40) as f64;
 
 /// For each input segment (of a zero-based `input`) that is inserted, the chain of output
 /// vertices along it, from its first to its second endpoint: consecutive chain vertices are
 /// output segments, input vertices on the chain lie exactly on the segment (or within rounding
-/// of it: [`SNAPPED_VERTEX_TOLERANCE`]), new vertices (not at
+/// of it: [`SNAPPED_RELATIVE_TO_SEGMENT`]), new vertices (not at
 /// any input vertex's place) within a small tolerance of it. Checks as well that every input
 /// vertex lying on a segment is on its chain, that segments that cross share a chain vertex, and
 /// that every output segment lies on a chain (or, with `hull_segments`, on the mesh boundary).
@@ -275,6 +276,16 @@ pub fn segment_chains(
     hull_segments: bool,
 ) -> Result<BTreeMap<usize, Vec<usize>>, String> {
     let input_places: HashSet<[u64; 2]> = input.points.iter().map(|&p| bits(p)).collect();
+    let extent = {
+        let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
+        for p in &input.points {
+            for i in 0..2 {
+                lo[i] = lo[i].min(p[i]);
+                hi[i] = hi[i].max(p[i]);
+            }
+        }
+        (hi[0] - lo[0]).max(hi[1] - lo[1])
+    };
     let mut adjacent: HashMap<usize, Vec<usize>> = HashMap::new();
     for s in &mesh.segments {
         adjacent.entry(s[0]).or_default().push(s[1]);
@@ -290,7 +301,8 @@ pub fn segment_chains(
         let on_line = |p: Point| {
             let cross = (p[0] - pa[0]) * d[1] - (p[1] - pa[1]) * d[0];
             if input_places.contains(&bits(p)) {
-                orient2d(pa, pb, p) == 0.0 || cross.abs() <= SNAPPED_VERTEX_TOLERANCE * length2
+                let snap = (SNAPPED_RELATIVE_TO_SEGMENT * length2.sqrt()).max(SNAPPED_RELATIVE_TO_EXTENT * extent);
+                orient2d(pa, pb, p) == 0.0 || cross.abs() <= 1.001 * snap * length2.sqrt()
             } else {
                 cross.abs() <= NEW_VERTEX_TOLERANCE * length2
             }
@@ -497,6 +509,16 @@ pub fn pslg_differences(
     theirs: &Triangulation,
 ) -> Vec<String> {
     let input_places: HashSet<[u64; 2]> = input.points.iter().map(|&p| bits(p)).collect();
+    let extent = {
+        let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
+        for p in &input.points {
+            for i in 0..2 {
+                lo[i] = lo[i].min(p[i]);
+                hi[i] = hi[i].max(p[i]);
+            }
+        }
+        (hi[0] - lo[0]).max(hi[1] - lo[1])
+    };
     let mut diffs = Vec::new();
     if ours.counts != theirs.counts {
         diffs.push(format!(
