@@ -753,13 +753,13 @@ fn on_line(orientation: f64, a: Point, b: Point) -> bool {
 
 /// Whether `x`, near the line through `a` and `b`, lies before `b` seen from `a` (an edge from
 /// `a` to a vertex within rounding of the line may pass by `b`).
-fn before(a: Point, x: Point, b: Point) -> bool {
+pub(crate) fn before(a: Point, x: Point, b: Point) -> bool {
     let d = [b[0] - a[0], b[1] - a[1]];
     (x[0] - a[0]) * d[0] + (x[1] - a[1]) * d[1] < d[0] * d[0] + d[1] * d[1]
 }
 
-/// Whether `x`, collinear with the ray from `a` through `b`, lies on that ray's side of `a`.
-fn along(a: Point, x: Point, b: Point) -> bool {
+/// Whether `x`, on or near the line through `a` and `b`, lies on the side of `a` toward `b`.
+pub(crate) fn along(a: Point, x: Point, b: Point) -> bool {
     (x[0] - a[0]) * (b[0] - a[0]) + (x[1] - a[1]) * (b[1] - a[1]) > 0.0
 }
 

@@ -22,7 +22,7 @@
 
 use std::collections::{HashSet, VecDeque};
 
-use crate::algorithms::constrain::Constrainer;
+use crate::algorithms::constrain::{along, before, Constrainer};
 use crate::algorithms::delaunay::Location;
 use crate::algorithms::domain::Domain;
 use crate::data::UnsuitableFn;
@@ -470,12 +470,13 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         let on_segment = |pu: Point, pv: Point, pw: Point| {
             let length2 = (pv[0] - pu[0]).powi(2) + (pv[1] - pu[1]).powi(2);
             let height = P::orient2d(pu, pv, pw); // |uv| times w's distance from the line
-            let along = |a: Point, b: Point| (pw[0] - a[0]) * (b[0] - a[0]) + (pw[1] - a[1]) * (b[1] - a[1]);
             let near = |a: Point| (pw[0] - a[0]).powi(2) + (pw[1] - a[1]).powi(2) < floor2;
-            height * height < floor2 * length2 && along(pu, pv) > 0.0 && along(pv, pu) > 0.0 && !near(pu) && !near(pv)
+            height * height < floor2 * length2 && along(pu, pw, pv) && before(pu, pw, pv) && !near(pu) && !near(pv)
         };
         let mesh = &self.cdt.inserter.mesh;
-        let mut work: Vec<u32> = (0..mesh.corners.len() as u32).filter(|&e| mesh.is_segment(e)).collect();
+        // One half-edge per subsegment: the flip looks at the vertices on both sides.
+        let mut work: Vec<u32> =
+            (0..mesh.corners.len() as u32).filter(|&e| mesh.is_segment(e) && e < mesh.twin(e)).collect();
         while let Some(e) = work.pop() {
             let mesh = &self.cdt.inserter.mesh;
             let (u, v) = (mesh.origin(e), mesh.dest(e));
@@ -484,11 +485,7 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
             }
             if let Some(w) = self.cdt.flip_edge_onto_vertex(e, on_segment) {
                 let mesh = &self.cdt.inserter.mesh;
-                for (a, b) in [(u, w), (w, v)] {
-                    if let Some(h) = mesh.find_edge(a, b) {
-                        work.extend([h, mesh.twin(h)]);
-                    }
-                }
+                work.extend([(u, w), (w, v)].into_iter().filter_map(|(a, b)| mesh.find_edge(a, b)));
             }
         }
     }

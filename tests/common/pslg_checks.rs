@@ -276,16 +276,7 @@ pub fn segment_chains(
     hull_segments: bool,
 ) -> Result<BTreeMap<usize, Vec<usize>>, String> {
     let input_places: HashSet<[u64; 2]> = input.points.iter().map(|&p| bits(p)).collect();
-    let extent = {
-        let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
-        for p in &input.points {
-            for i in 0..2 {
-                lo[i] = lo[i].min(p[i]);
-                hi[i] = hi[i].max(p[i]);
-            }
-        }
-        (hi[0] - lo[0]).max(hi[1] - lo[1])
-    };
+    let extent = extent(&input.points);
     let mut adjacent: HashMap<usize, Vec<usize>> = HashMap::new();
     for s in &mesh.segments {
         adjacent.entry(s[0]).or_default().push(s[1]);
@@ -497,6 +488,18 @@ pub fn check_markers(
 /// crossings) within a small tolerance relative to the input's extent.
 pub const SNAP_TOLERANCE: f64 = 1e-9;
 
+/// The larger side of the bounding box of `points`.
+fn extent(points: &[Point]) -> f64 {
+    let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
+    for p in points {
+        for i in 0..2 {
+            lo[i] = lo[i].min(p[i]);
+            hi[i] = hi[i].max(p[i]);
+        }
+    }
+    (hi[0] - lo[0]).max(hi[1] - lo[1])
+}
+
 /// Every difference between our output and Triangle's for the same PSLG and switches:
 /// counts, which arrays are written, vertices (matched by coordinates, snapped), vertex markers
 /// (of vertices in the mesh) and attributes, triangles (where the CDT is unique; elsewhere the
@@ -509,16 +512,6 @@ pub fn pslg_differences(
     theirs: &Triangulation,
 ) -> Vec<String> {
     let input_places: HashSet<[u64; 2]> = input.points.iter().map(|&p| bits(p)).collect();
-    let extent = {
-        let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
-        for p in &input.points {
-            for i in 0..2 {
-                lo[i] = lo[i].min(p[i]);
-                hi[i] = hi[i].max(p[i]);
-            }
-        }
-        (hi[0] - lo[0]).max(hi[1] - lo[1])
-    };
     let mut diffs = Vec::new();
     if ours.counts != theirs.counts {
         diffs.push(format!(
