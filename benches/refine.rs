@@ -58,9 +58,7 @@ fn bench(pslg: &Pslg, switches: &str, reps: usize) {
         "  triangles:    {ours_count} (ours), {theirs_count} (Triangle's): {:.3}× Triangle's",
         ours_count as f64 / theirs_count as f64
     );
-    println!(
-        "  min angle:    {ours_angle:.4}° (ours), {theirs_angle:.4}° (Triangle's)"
-    );
+    println!("  min angle:    {ours_angle:.4}° (ours), {theirs_angle:.4}° (Triangle's)");
 }
 
 fn main() {
@@ -72,12 +70,20 @@ fn main() {
     };
     println!(
         "Quality meshing against Triangle 1.6, {reps} interleaved repetition(s){}",
-        if full { "" } else { " (smoke run: small inputs)" }
+        if full {
+            ""
+        } else {
+            " (smoke run: small inputs)"
+        }
     );
     let square = square_with_hole(256);
     bench(
         &square,
-        if full { "pq30a0.0000014Q" } else { "pq30a0.001Q" },
+        if full {
+            "pq30a0.0000014Q"
+        } else {
+            "pq30a0.001Q"
+        },
         reps,
     );
     let star = star_polygon_pslg(if full { 3000 } else { 200 }, STAR_SEED);

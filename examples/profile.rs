@@ -23,13 +23,17 @@ fn main() {
         "cdt" => {
             // The star polygon of benches/cdt.rs (same seed, same generator).
             let mut rng = SplitMix64::new(0x5EED_0C07);
-            let mut angles: Vec<f64> = (0..n).map(|_| rng.next_f64() * std::f64::consts::TAU).collect();
+            let mut angles: Vec<f64> = (0..n)
+                .map(|_| rng.next_f64() * std::f64::consts::TAU)
+                .collect();
             angles.sort_by(f64::total_cmp);
             for a in angles {
                 let r = 0.1 + 0.9 * rng.next_f64();
                 points.extend_from_slice(&[r * a.cos(), r * a.sin()]);
             }
-            segments = (0..n).flat_map(|i| [i as i32 + 1, ((i + 1) % n) as i32 + 1]).collect();
+            segments = (0..n)
+                .flat_map(|i| [i as i32 + 1, ((i + 1) % n) as i32 + 1])
+                .collect();
             "pQ"
         }
         _ => {
@@ -42,10 +46,15 @@ fn main() {
     };
     let switches = std::env::var("SWITCHES").unwrap_or_else(|_| default_switches.to_string());
     let options = Options::parse(&switches, SwitchSource::Library).expect("switches");
-    let input = Input { points: &points, segments: &segments, ..Input::default() };
+    let input = Input {
+        points: &points,
+        segments: &segments,
+        ..Input::default()
+    };
     for _ in 0..reps {
         let (start, cpu) = (Instant::now(), cpu_seconds());
-        let (output, _) = triangle_rs::triangulate(&options, &input, &Hooks::default()).expect("triangulate");
+        let (output, _) =
+            triangle_rs::triangulate(&options, &input, &Hooks::default()).expect("triangulate");
         println!(
             "{mode} n={n} \"{switches}\": wall {:.3} s, cpu {:.3} s, {} triangles",
             start.elapsed().as_secs_f64(),
@@ -57,7 +66,10 @@ fn main() {
 
 /// CPU time of the whole process (all threads), in seconds.
 fn cpu_seconds() -> f64 {
-    let mut now = libc::timespec { tv_sec: 0, tv_nsec: 0 };
+    let mut now = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
     // SAFETY: a valid clock id and a valid out-pointer.
     unsafe { libc::clock_gettime(libc::CLOCK_PROCESS_CPUTIME_ID, &mut now) };
     now.tv_sec as f64 + now.tv_nsec as f64 * 1e-9

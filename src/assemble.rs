@@ -96,7 +96,11 @@ impl FinishedMesh<'_> {
         let list_edges = options.edges || options.second_order || options.voronoi;
         // Written at the running count and kept by advancing it: `e < f` is a coin toss per
         // half-edge, and a branch on it would be mispredicted half the time.
-        let mut edges = if list_edges { vec![0; 3 * triangles.len()] } else { Vec::new() };
+        let mut edges = if list_edges {
+            vec![0; 3 * triangles.len()]
+        } else {
+            Vec::new()
+        };
         let mut boundary_edges = Vec::new();
         let mut segment_edges = Vec::new();
         let mut edge_count = 0;
@@ -135,7 +139,16 @@ impl FinishedMesh<'_> {
         } else {
             (None, n)
         };
-        Numbering { vertex, vertex_count, triangle, triangles, edges, edge_count, boundary_edges, segment_edges }
+        Numbering {
+            vertex,
+            vertex_count,
+            triangle,
+            triangles,
+            edges,
+            edge_count,
+            boundary_edges,
+            segment_edges,
+        }
     }
 
     /// Final vertex markers: the input marker; else, as Triangle assigns them while inserting
@@ -175,7 +188,8 @@ impl FinishedMesh<'_> {
                 if input != 0 {
                     input
                 } else if first_segment[v] != NONE {
-                    self.segment_markers.map_or(0, |m| m[first_segment[v] as usize])
+                    self.segment_markers
+                        .map_or(0, |m| m[first_segment[v] as usize])
                 } else {
                     i32::from(on_boundary[v] || self.all_collinear)
                 }
@@ -208,7 +222,9 @@ impl FinishedMesh<'_> {
             let k = self.point_attribute_count;
             for &e in &numbering.edges {
                 let (a, b) = ends(e);
-                attributes.extend((0..k).map(|i| 0.5 * (self.point_attributes[a * k + i] + self.point_attributes[b * k + i])));
+                attributes.extend((0..k).map(|i| {
+                    0.5 * (self.point_attributes[a * k + i] + self.point_attributes[b * k + i])
+                }));
             }
         }
         if let Some(markers) = output.point_markers.as_mut() {
@@ -217,7 +233,11 @@ impl FinishedMesh<'_> {
         if !options.no_element_output {
             let mut tris = Vec::with_capacity(6 * numbering.triangles.len());
             for &t in &numbering.triangles {
-                tris.extend(self.mesh.triangle(t).map(|v| numbering.vertex_index(v) as i32 + base));
+                tris.extend(
+                    self.mesh
+                        .triangle(t)
+                        .map(|v| numbering.vertex_index(v) as i32 + base),
+                );
                 for slot in [1, 2, 0] {
                     tris.push(node_of_half_edge[(3 * t + slot) as usize] as i32 + base);
                 }
@@ -246,12 +266,20 @@ impl FinishedMesh<'_> {
         if !options.no_node_output {
             output.points = Some(match &numbering.vertex {
                 None => self.mesh.points.as_flattened().to_vec(),
-                Some(_) => (0..n).filter(kept).flat_map(|v| self.mesh.points[v]).collect(),
+                Some(_) => (0..n)
+                    .filter(kept)
+                    .flat_map(|v| self.mesh.points[v])
+                    .collect(),
             });
             if self.point_attribute_count > 0 {
                 let k = self.point_attribute_count;
-                output.point_attributes =
-                    Some((0..n).filter(kept).flat_map(|v| &self.point_attributes[v * k..v * k + k]).copied().collect());
+                output.point_attributes = Some(
+                    (0..n)
+                        .filter(kept)
+                        .flat_map(|v| &self.point_attributes[v * k..v * k + k])
+                        .copied()
+                        .collect(),
+                );
             }
             if markers {
                 let all = self.vertex_markers(numbering);
@@ -270,8 +298,16 @@ impl FinishedMesh<'_> {
                     // Output triangles are never ghosts: every corner is a vertex id.
                     for &t in &numbering.triangles {
                         let i = 3 * t as usize;
-                        let [a, b, c] = [self.mesh.corners[i], self.mesh.corners[i + 1], self.mesh.corners[i + 2]];
-                        tris.extend_from_slice(&[a as i32 + base, b as i32 + base, c as i32 + base]);
+                        let [a, b, c] = [
+                            self.mesh.corners[i],
+                            self.mesh.corners[i + 1],
+                            self.mesh.corners[i + 2],
+                        ];
+                        tris.extend_from_slice(&[
+                            a as i32 + base,
+                            b as i32 + base,
+                            c as i32 + base,
+                        ]);
                     }
                 }
                 Some(_) => {
@@ -289,7 +325,11 @@ impl FinishedMesh<'_> {
                 for i in 0..3 {
                     let e = 3 * t + (i + 1) % 3;
                     let other = numbering.triangle[triangle_of(self.mesh.twin(e)) as usize];
-                    neighbors.push(if other == NONE { -1 } else { other as i32 + base });
+                    neighbors.push(if other == NONE {
+                        -1
+                    } else {
+                        other as i32 + base
+                    });
                 }
             }
             output.neighbors = Some(neighbors);
@@ -298,7 +338,12 @@ impl FinishedMesh<'_> {
         let edges = &numbering.edges;
         output.edge_count = numbering.edge_count;
         if options.edges {
-            output.edges = Some(edges.iter().flat_map(|&e| [vid(self.mesh.origin(e)), vid(self.mesh.dest(e))]).collect());
+            output.edges = Some(
+                edges
+                    .iter()
+                    .flat_map(|&e| [vid(self.mesh.origin(e)), vid(self.mesh.dest(e))])
+                    .collect(),
+            );
             if markers {
                 output.edge_markers = Some(edges.iter().map(|&e| self.edge_marker(e)).collect());
             }
@@ -307,17 +352,26 @@ impl FinishedMesh<'_> {
         // Segments: the subsegments of the mesh, or (without segments) the hull edges, which
         // Triangle counts although it writes no list.
         let segments: &[u32] = if self.uses_segments {
-            if self.segment_markers.is_some() { &numbering.segment_edges } else { &[] }
+            if self.segment_markers.is_some() {
+                &numbering.segment_edges
+            } else {
+                &[]
+            }
         } else {
             &numbering.boundary_edges
         };
         output.segment_count = segments.len();
         if self.uses_segments && !options.no_poly_output {
             // Written from the outside, as Triangle writes hull segments.
-            output.segments =
-                Some(segments.iter().flat_map(|&e| [vid(self.mesh.dest(e)), vid(self.mesh.origin(e))]).collect());
+            output.segments = Some(
+                segments
+                    .iter()
+                    .flat_map(|&e| [vid(self.mesh.dest(e)), vid(self.mesh.origin(e))])
+                    .collect(),
+            );
             if markers {
-                output.segment_markers = Some(segments.iter().map(|&e| self.edge_marker(e)).collect());
+                output.segment_markers =
+                    Some(segments.iter().map(|&e| self.edge_marker(e)).collect());
             }
         }
     }

@@ -50,7 +50,10 @@ impl fmt::Display for Error {
             }
             Error::Unsupported(what) => write!(f, "{what} is not supported yet by triangle-rs."),
             Error::TooFewCorners(n) => {
-                write!(f, "Triangles must have at least 3 vertices (numberofcorners = {n}).")
+                write!(
+                    f,
+                    "Triangles must have at least 3 vertices (numberofcorners = {n})."
+                )
             }
             Error::InvalidTriangleVertex { triangle } => {
                 write!(f, "Triangle {triangle} has an invalid vertex index.")
@@ -59,7 +62,10 @@ impl fmt::Display for Error {
             Error::BadSwitches => write!(f, "The switch string is not valid ASCII text."),
             Error::OutOfMemory => write!(f, "Out of memory."),
             Error::Cancelled => write!(f, "Triangulation cancelled by the caller."),
-            Error::Internal(why) => write!(f, "Internal error in triangle-rs: {why}. Please report this bug."),
+            Error::Internal(why) => write!(
+                f,
+                "Internal error in triangle-rs: {why}. Please report this bug."
+            ),
         }
     }
 }

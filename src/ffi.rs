@@ -61,7 +61,9 @@ unsafe fn run(
         return Err(Error::NullArgument("switches"));
     }
     // SAFETY: non-NULL and, by the C contract, a NUL-terminated string.
-    let text = unsafe { CStr::from_ptr(switches) }.to_str().map_err(|_| Error::BadSwitches)?;
+    let text = unsafe { CStr::from_ptr(switches) }
+        .to_str()
+        .map_err(|_| Error::BadSwitches)?;
     let options = Options::parse(text, SwitchSource::Library)?;
     let quiet = options.quiet;
     let result = (|| {
@@ -84,7 +86,10 @@ unsafe fn run(
             Some(unsafe { AtomicI32::from_ptr(cancel as *mut i32) })
         };
         let is_cancelled = move || cancel_flag.is_some_and(|f| f.load(Ordering::Relaxed) != 0);
-        let hooks = Hooks { unsuitable: callback, cancel: Some(&is_cancelled) };
+        let hooks = Hooks {
+            unsuitable: callback,
+            cancel: Some(&is_cancelled),
+        };
         let result = {
             // SAFETY: the arrays of `in` hold as many items as its counts say (C contract).
             let engine_input = unsafe { input_from_raw(in_ref, &options)? };
@@ -96,7 +101,11 @@ unsafe fn run(
         // SAFETY: `out`/`vorout` are valid (checked non-NULL) and their non-NULL arrays are
         // large enough (Triangle's contract).
         unsafe {
-            let vor = if vorout.is_null() { None } else { Some((&voronoi, &mut *vorout)) };
+            let vor = if vorout.is_null() {
+                None
+            } else {
+                Some((&voronoi, &mut *vorout))
+            };
             write_output(&in_copy, &mesh, &mut *output, vor)?;
         }
         if !quiet {
@@ -162,9 +171,15 @@ pub unsafe extern "C" fn triangulate(
     vorout: *mut TriangulateIO,
 ) -> c_int {
     let callback = global_callback();
-    let test = move |ox, oy, dx, dy, ax, ay, area| callback.is_some_and(|f| f(ox, oy, dx, dy, ax, ay, area) != 0);
+    let test = move |ox, oy, dx, dy, ax, ay, area| {
+        callback.is_some_and(|f| f(ox, oy, dx, dy, ax, ay, area) != 0)
+    };
     let callback_ref: Option<&(dyn Fn(f64, f64, f64, f64, f64, f64, f64) -> bool + Sync)> =
-        if callback.is_some() { Some(&test) } else { None };
+        if callback.is_some() {
+            Some(&test)
+        } else {
+            None
+        };
     // SAFETY: the caller's contract is this function's.
     guarded(|| unsafe { run(switches, r#in, out, vorout, callback_ref, std::ptr::null()) })
 }
@@ -211,7 +226,11 @@ pub unsafe extern "C" fn triangulate_reentrant(
         unsuitable.is_some_and(|f| f(ox, oy, dx, dy, ax, ay, area, data.0) != 0)
     };
     let callback_ref: Option<&(dyn Fn(f64, f64, f64, f64, f64, f64, f64) -> bool + Sync)> =
-        if unsuitable.is_some() { Some(&test) } else { None };
+        if unsuitable.is_some() {
+            Some(&test)
+        } else {
+            None
+        };
     // SAFETY: the caller's contract is this function's.
     guarded(|| unsafe { run(switches, r#in, out, vorout, callback_ref, cancel) })
 }

@@ -222,7 +222,13 @@ fn parse_number(bytes: &[u8], start: usize) -> (Option<f64>, usize) {
     // Longest prefix of the form digits [. digits].
     let first_dot = run.iter().position(|&b| b == b'.');
     let prefix_len = match first_dot {
-        Some(d) => d + 1 + run[d + 1..].iter().take_while(|b| b.is_ascii_digit()).count(),
+        Some(d) => {
+            d + 1
+                + run[d + 1..]
+                    .iter()
+                    .take_while(|b| b.is_ascii_digit())
+                    .count()
+        }
         None => run.len(),
     };
     let whole_run_is_decimal = prefix_len == run.len();
@@ -245,10 +251,20 @@ fn parse_number(bytes: &[u8], start: usize) -> (Option<f64>, usize) {
         }
     }
     // Rust's float parser is locale-independent; "." or "" (no digits) reads as 0 like strtod.
-    let mantissa_has_digit = text.bytes().take_while(|&b| b != b'e').any(|b| b.is_ascii_digit());
+    let mantissa_has_digit = text
+        .bytes()
+        .take_while(|&b| b != b'e')
+        .any(|b| b.is_ascii_digit());
     let value = if mantissa_has_digit {
-        let normalized = if text.starts_with('.') { format!("0{text}") } else { text };
-        normalized.replace(".e", ".0e").parse::<f64>().unwrap_or(0.0)
+        let normalized = if text.starts_with('.') {
+            format!("0{text}")
+        } else {
+            text
+        };
+        normalized
+            .replace(".e", ".0e")
+            .parse::<f64>()
+            .unwrap_or(0.0)
     } else {
         0.0
     };
@@ -304,7 +320,11 @@ mod tests {
         assert!(o.no_node_output && o.no_element_output && o.ignore_holes && o.no_exact);
         assert!(o.jettison && o.split_segments);
         assert!(!o.no_iteration_numbers, "I is not parsed in the library");
-        assert!(Options::parse("I", SwitchSource::CommandLine).unwrap().no_iteration_numbers);
+        assert!(
+            Options::parse("I", SwitchSource::CommandLine)
+                .unwrap()
+                .no_iteration_numbers
+        );
         assert!(!lib("o").second_order);
         assert!(!lib("a").variable_area, "variable area needs p or r");
         assert!(!lib("A").region_attributes, "A needs p");

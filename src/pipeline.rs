@@ -1,27 +1,28 @@
 //! The driver: checks the input, runs the algorithms that the options ask for and assembles the
 //! [`Output`] and [`VoronoiOutput`].
 
-use crate::assemble::FinishedMesh;
 use crate::algorithms::constrain::Constrainer;
+use crate::algorithms::delaunay::{self, merge, order, Inserter, Triangulation};
 use crate::algorithms::domain::{carve, Domain};
 use crate::algorithms::reconstruct::reconstruct;
 use crate::algorithms::refine::{Quality, Refiner, VertexKind};
+use crate::algorithms::voronoi::voronoi_diagram;
+use crate::assemble::FinishedMesh;
 use crate::data::{Hooks, Input, Output, VoronoiOutput};
-use crate::algorithms::delaunay::{self, merge, order, Inserter, Triangulation};
 use crate::error::Error;
 use crate::geometry::{Exact, Inexact, Point, Predicates};
 use crate::mesh::{Mesh, GHOST, NONE, OUTSIDE};
 use crate::options::{Algorithm, Options};
-use crate::algorithms::voronoi::voronoi_diagram;
 
 /// Seed of the randomized insertion order (`i`): fixed, so results are reproducible.
 const BRIO_SEED: u64 = 0x7269_616E_676C_6521;
 
 /// Rejects the switches whose features have not landed yet, with a clear message.
 fn check_supported(options: &Options) -> Result<(), Error> {
-    let unsupported = [
-        (options.weighted != 0, "The `w`/`W` switches (weighted triangulation)"),
-    ];
+    let unsupported = [(
+        options.weighted != 0,
+        "The `w`/`W` switches (weighted triangulation)",
+    )];
     match unsupported.iter().find(|(on, _)| *on) {
         Some((_, what)) => Err(Error::Unsupported(what)),
         None => Ok(()),
@@ -35,11 +36,20 @@ fn checked_points(input: &Input<'_>) -> Result<Vec<Point>, Error> {
         return Err(Error::TooFewPoints);
     }
     if input.point_attributes.len() != n * input.point_attribute_count {
-        return Err(Error::BadCount { field: "numberofpointattributes", value: input.point_attribute_count as i64 });
+        return Err(Error::BadCount {
+            field: "numberofpointattributes",
+            value: input.point_attribute_count as i64,
+        });
     }
     let points: Vec<Point> = input.points.chunks_exact(2).map(|c| [c[0], c[1]]).collect();
-    if let Some(i) = points.iter().position(|p| !(p[0].is_finite() && p[1].is_finite())) {
-        return Err(Error::NonFinite { what: "Vertex", index: i });
+    if let Some(i) = points
+        .iter()
+        .position(|p| !(p[0].is_finite() && p[1].is_finite()))
+    {
+        return Err(Error::NonFinite {
+            what: "Vertex",
+            index: i,
+        });
     }
     Ok(points)
 }
@@ -66,7 +76,11 @@ fn delaunay_with<P: Predicates>(options: &Options, mut points: Vec<Point>) -> Tr
 
 /// Triangulates `input` as the switches in `options` ask. The safe entry point of the engine:
 /// the C ABI, the command-line program and Rust callers all come through here.
-pub fn triangulate(options: &Options, input: &Input<'_>, hooks: &Hooks<'_>) -> Result<(Output, VoronoiOutput), Error> {
+pub fn triangulate(
+    options: &Options,
+    input: &Input<'_>,
+    hooks: &Hooks<'_>,
+) -> Result<(Output, VoronoiOutput), Error> {
     check_supported(options)?;
     let points = checked_points(input)?;
     if options.no_exact {
@@ -120,7 +134,9 @@ fn run<P: Predicates>(
     let k = input.point_attribute_count;
     let mut meshed = Meshed {
         point_attributes: input.point_attributes.to_vec(),
-        point_markers: input.point_markers.map_or_else(|| vec![0; n], <[i32]>::to_vec),
+        point_markers: input
+            .point_markers
+            .map_or_else(|| vec![0; n], <[i32]>::to_vec),
         segment_markers: Vec::new(),
         domain: Domain::default(),
         uses_segments: options.uses_segments(),
@@ -142,14 +158,30 @@ fn run<P: Predicates>(
             // New vertices where segments cross: attributes interpolated along the crossed one.
             let (from, to) = (c.from as usize * k, c.to as usize * k);
             for i in 0..k {
-                let (a, b) = (meshed.point_attributes[from + i], meshed.point_attributes[to + i]);
+                let (a, b) = (
+                    meshed.point_attributes[from + i],
+                    meshed.point_attributes[to + i],
+                );
                 meshed.point_attributes.push(a + c.t * (b - a));
             }
         }
-        let holes: &[f64] = if options.ignore_holes { &[] } else { input.holes };
+        let holes: &[f64] = if options.ignore_holes {
+            &[]
+        } else {
+            input.holes
+        };
         meshed.domain = if options.refine {
-            let areas = if options.variable_area { input.triangle_areas } else { None };
-            Domain::per_triangle(&mut cdt.inserter.mesh, input.triangle_count(), input.triangle_attributes, areas)
+            let areas = if options.variable_area {
+                input.triangle_areas
+            } else {
+                None
+            };
+            Domain::per_triangle(
+                &mut cdt.inserter.mesh,
+                input.triangle_count(),
+                input.triangle_attributes,
+                areas,
+            )
         } else if options.pslg {
             carve(&mut cdt, options.convex_hull, holes, input.regions)
         } else {
@@ -162,13 +194,18 @@ fn run<P: Predicates>(
                 // slivers outside could not be split with a boundary segment without inverting.
                 let tag = std::mem::take(&mut cdt.inserter.mesh.tag);
                 cdt.inserter.mesh.tag = tag.clone();
-                cdt.inserter.retain_triangles(|t| tag[t as usize] != OUTSIDE);
+                cdt.inserter
+                    .retain_triangles(|t| tag[t as usize] != OUTSIDE);
             }
             let quality = Quality {
                 min_angle: options.min_angle,
                 max_area: options.max_area,
                 variable_area: options.variable_area,
-                user_test: if options.user_test { hooks.unsuitable } else { None },
+                user_test: if options.user_test {
+                    hooks.unsuitable
+                } else {
+                    None
+                },
                 no_steiner_on_segments: options.no_steiner_on_segments,
                 max_steiner: options.max_steiner,
                 cancel: hooks.cancel,
@@ -259,7 +296,12 @@ fn insert_segments<P: Predicates>(
     }
 }
 
-fn write_outputs(options: &Options, input: &Input<'_>, meshed: &Meshed, mut output: Output) -> (Output, VoronoiOutput) {
+fn write_outputs(
+    options: &Options,
+    input: &Input<'_>,
+    meshed: &Meshed,
+    mut output: Output,
+) -> (Output, VoronoiOutput) {
     let mesh = &meshed.mesh;
     // With no triangle at all (all points on a line) no vertex is left out, as in Triangle.
     let all_collinear = mesh.triangle_count() == 0 && !meshed.uses_segments;
@@ -322,9 +364,15 @@ fn write_outputs(options: &Options, input: &Input<'_>, meshed: &Meshed, mut outp
     // Triangle attributes: with `r` the input triangles' (inherited by their pieces), with `A`
     // (and regions) the region's (0 outside every region).
     let domain = &meshed.domain;
-    if (options.refine || (options.region_attributes && input.region_count() > 0)) && domain.attribute_count > 0 {
-        let attributes =
-            numbering.triangles.iter().flat_map(|&t| domain.attributes_of(mesh.tag[t as usize])).copied().collect();
+    if (options.refine || (options.region_attributes && input.region_count() > 0))
+        && domain.attribute_count > 0
+    {
+        let attributes = numbering
+            .triangles
+            .iter()
+            .flat_map(|&t| domain.attributes_of(mesh.tag[t as usize]))
+            .copied()
+            .collect();
         output.triangle_attribute_count = domain.attribute_count;
         output.triangle_attributes = (!options.no_element_output).then_some(attributes);
     }

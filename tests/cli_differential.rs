@@ -69,10 +69,17 @@ impl Pair {
 
     /// The output files (inputs excluded); both programs must have written the same ones.
     fn outputs(&self, what: &str) -> Vec<String> {
-        let strip =
-            |dir: &TempDir| -> Vec<String> { dir.files().into_iter().filter(|f| !self.inputs.contains(f)).collect() };
+        let strip = |dir: &TempDir| -> Vec<String> {
+            dir.files()
+                .into_iter()
+                .filter(|f| !self.inputs.contains(f))
+                .collect()
+        };
         let (reference, ours) = (strip(&self.reference), strip(&self.ours));
-        assert_eq!(ours, reference, "{what}: the programs wrote different files");
+        assert_eq!(
+            ours, reference,
+            "{what}: the programs wrote different files"
+        );
         ours
     }
 }
@@ -99,7 +106,11 @@ fn compare_unique(pair: &Pair, base: &str, what: &str, node_in_order: bool) {
     for name in &outputs {
         let (ref_text, our_text) = (pair.reference.read(name), pair.ours.read(name));
         let (ref_lines, our_lines) = (without_footer(&ref_text), without_footer(&our_text));
-        assert_eq!(our_lines.first(), ref_lines.first(), "{what}: {name}: headers differ");
+        assert_eq!(
+            our_lines.first(),
+            ref_lines.first(),
+            "{what}: {name}: headers differ"
+        );
         let extension = name.strip_prefix(base).unwrap();
         match extension {
             ".node" => {
@@ -123,7 +134,11 @@ fn compare_unique(pair: &Pair, base: &str, what: &str, node_in_order: bool) {
                         rows.sort();
                         rows
                     };
-                    assert_eq!(rows(&ours), rows(&reference), "{what}: {name}: vertex sets differ");
+                    assert_eq!(
+                        rows(&ours),
+                        rows(&reference),
+                        "{what}: {name}: vertex sets differ"
+                    );
                 }
             }
             ".ele" => {
@@ -142,10 +157,14 @@ fn compare_unique(pair: &Pair, base: &str, what: &str, node_in_order: bool) {
             }
             ".poly" => {
                 let segments = |r: &Results, dir: &TempDir| {
-                    let poly = files::read_poly(&dir.read(name), name, true).unwrap_or_else(|e| panic!("{e}"));
+                    let poly = files::read_poly(&dir.read(name), name, true)
+                        .unwrap_or_else(|e| panic!("{e}"));
                     let mut segments: Vec<_> = (0..poly.segments.len() / 2)
                         .map(|s| {
-                            let key = edge_key(r.point(poly.segments[2 * s]), r.point(poly.segments[2 * s + 1]));
+                            let key = edge_key(
+                                r.point(poly.segments[2 * s]),
+                                r.point(poly.segments[2 * s + 1]),
+                            );
                             (key, poly.segment_markers.as_ref().map(|m| m[s]))
                         })
                         .collect();
@@ -160,11 +179,15 @@ fn compare_unique(pair: &Pair, base: &str, what: &str, node_in_order: bool) {
             }
             ".edge" => {
                 let edges = |r: &Results, dir: &TempDir| {
-                    let edge = files::read_edge(&dir.read(name), name).unwrap_or_else(|e| panic!("{e}"));
+                    let edge =
+                        files::read_edge(&dir.read(name), name).unwrap_or_else(|e| panic!("{e}"));
                     let mut edges: Vec<_> = (0..edge.edges.len() / 2)
                         .map(|e| {
                             (
-                                edge_key(r.point(edge.edges[2 * e]), r.point(edge.edges[2 * e + 1])),
+                                edge_key(
+                                    r.point(edge.edges[2 * e]),
+                                    r.point(edge.edges[2 * e + 1]),
+                                ),
                                 edge.markers.as_ref().map(|m| m[e]),
                             )
                         })
@@ -180,7 +203,8 @@ fn compare_unique(pair: &Pair, base: &str, what: &str, node_in_order: bool) {
             }
             ".neigh" => {
                 let neighbours = |dir: &TempDir, r: &Results, triangles: &[CanonicalTriangle]| {
-                    let neigh = files::read_neigh(&dir.read(name), name).unwrap_or_else(|e| panic!("{e}"));
+                    let neigh =
+                        files::read_neigh(&dir.read(name), name).unwrap_or_else(|e| panic!("{e}"));
                     let mut rows: Vec<_> = triangles
                         .iter()
                         .enumerate()
@@ -206,7 +230,9 @@ fn compare_unique(pair: &Pair, base: &str, what: &str, node_in_order: bool) {
             }
             ".v.node" | ".v.edge" => {} // Compared together below.
             ".off" => {
-                let off = |dir: &TempDir| files::read_off(&dir.read(name), name).unwrap_or_else(|e| panic!("{e}"));
+                let off = |dir: &TempDir| {
+                    files::read_off(&dir.read(name), name).unwrap_or_else(|e| panic!("{e}"))
+                };
                 let (o, r) = (off(&pair.ours), off(&pair.reference));
                 assert_eq!(
                     (o.points.len(), o.triangles.len(), o.edge_count),
@@ -247,8 +273,10 @@ fn compare_voronoi(
     let read = |dir: &TempDir, (results, triangles): (&Results, &[CanonicalTriangle])| {
         let node_name = format!("{base}.v.node");
         let edge_name = format!("{base}.v.edge");
-        let nodes = files::read_node(&dir.read(&node_name), &node_name).unwrap_or_else(|e| panic!("{e}"));
-        let edges = files::read_voronoi_edge(&dir.read(&edge_name), &edge_name).unwrap_or_else(|e| panic!("{e}"));
+        let nodes =
+            files::read_node(&dir.read(&node_name), &node_name).unwrap_or_else(|e| panic!("{e}"));
+        let edges = files::read_voronoi_edge(&dir.read(&edge_name), &edge_name)
+            .unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(
             nodes.point_count(),
             triangles.len(),
@@ -268,14 +296,21 @@ fn compare_voronoi(
         for e in 0..edges.edges.len() / 2 {
             let (first, second) = (edges.edges[2 * e], edges.edges[2 * e + 1]);
             if second == -1 {
-                rays.push((triangle_of(first), edges.norms[2 * e], edges.norms[2 * e + 1]));
+                rays.push((
+                    triangle_of(first),
+                    edges.norms[2 * e],
+                    edges.norms[2 * e + 1],
+                ));
             } else {
                 let (p, q) = (triangle_of(first), triangle_of(second));
                 finite.push(if p <= q { (p, q) } else { (q, p) });
             }
         }
         finite.sort();
-        rays.sort_by(|x, y| x.0.cmp(&y.0).then(x.2.atan2(x.1).total_cmp(&y.2.atan2(y.1))));
+        rays.sort_by(|x, y| {
+            x.0.cmp(&y.0)
+                .then(x.2.atan2(x.1).total_cmp(&y.2.atan2(y.1)))
+        });
         (centres, finite, rays)
     };
     let (ref_centres, ref_finite, ref_rays) = read(&pair.reference, reference);
@@ -293,8 +328,15 @@ fn compare_voronoi(
             );
         }
     }
-    assert_eq!(our_finite, ref_finite, "{what}: finite Voronoi edges differ");
-    assert_eq!(our_rays.len(), ref_rays.len(), "{what}: numbers of Voronoi rays differ");
+    assert_eq!(
+        our_finite, ref_finite,
+        "{what}: finite Voronoi edges differ"
+    );
+    assert_eq!(
+        our_rays.len(),
+        ref_rays.len(),
+        "{what}: numbers of Voronoi rays differ"
+    );
     for (o, r) in our_rays.iter().zip(&ref_rays) {
         assert_eq!(o.0, r.0, "{what}: rays start at different triangles");
         assert!(
@@ -330,7 +372,10 @@ fn delaunay_of_point_sets_matches_the_reference() {
             if switches.contains('I') {
                 // No .node is written over the input: compare with the input's vertices.
                 let outputs = pair.outputs(&what);
-                assert!(!outputs.iter().any(|f| f.ends_with(".node")), "{what}: {outputs:?}");
+                assert!(
+                    !outputs.iter().any(|f| f.ends_with(".node")),
+                    "{what}: {outputs:?}"
+                );
                 let input = Results::read(&pair.ours, &name);
                 let (o, r) = (
                     read_ele(&pair.ours, &format!("{base}.ele")),
@@ -355,7 +400,9 @@ fn second_iteration_reads_the_first() {
         return;
     };
     pair.assert_both_succeeded("-Q dots.node");
-    let second = |dir: &TempDir, program: &std::path::Path| run(program, dir.path(), &["-Qcn", "dots.1.node"]);
+    let second = |dir: &TempDir, program: &std::path::Path| {
+        run(program, dir.path(), &["-Qcn", "dots.1.node"])
+    };
     let (r, o) = (
         second(&pair.reference, &reference().unwrap()),
         second(&pair.ours, &ours()),
@@ -438,7 +485,11 @@ fn measure(dir: &TempDir, base: &str) -> MeshMeasures {
     };
     for t in &triangles {
         let area = signed_area(&t.corners);
-        assert!(area > 0.0, "{base}: triangle {:?} is not counterclockwise", t.corners);
+        assert!(
+            area > 0.0,
+            "{base}: triangle {:?} is not counterclockwise",
+            t.corners
+        );
         m.total_area += area;
         m.largest_area = m.largest_area.max(area);
         m.smallest_angle = m.smallest_angle.min(smallest_angle(&t.corners));
@@ -448,9 +499,13 @@ fn measure(dir: &TempDir, base: &str) -> MeshMeasures {
     }
     let poly_name = format!("{base}.poly");
     if dir.exists(&poly_name) {
-        let poly = files::read_poly(&dir.read(&poly_name), &poly_name, false).unwrap_or_else(|e| panic!("{e}"));
+        let poly = files::read_poly(&dir.read(&poly_name), &poly_name, false)
+            .unwrap_or_else(|e| panic!("{e}"));
         for s in poly.segments.chunks_exact(2) {
-            let (a, b) = (point_value(results.point(s[0])), point_value(results.point(s[1])));
+            let (a, b) = (
+                point_value(results.point(s[0])),
+                point_value(results.point(s[1])),
+            );
             m.segment_length += (a.0 - b.0).hypot(a.1 - b.1);
         }
     }
@@ -458,7 +513,13 @@ fn measure(dir: &TempDir, base: &str) -> MeshMeasures {
 }
 
 /// Compares two refinements of the same input, which need not be identical.
-fn compare_refined(pair: &Pair, base: &str, what: &str, min_angle: Option<f64>, max_area: Option<f64>) {
+fn compare_refined(
+    pair: &Pair,
+    base: &str,
+    what: &str,
+    min_angle: Option<f64>,
+    max_area: Option<f64>,
+) {
     pair.outputs(what);
     let (o, r) = (measure(&pair.ours, base), measure(&pair.reference, base));
     assert!(
@@ -536,7 +597,11 @@ fn quality_meshes_compare_by_measures() {
     // Quality meshing of a point set (the convex hull is the domain).
     let text = random_node_file(4, 40, 1, true, 1);
     let what = "-Qq rand40.node";
-    let Some(pair) = run_both("q-points", &[("rand40.node", &text)], &["-Qq", "rand40.node"]) else {
+    let Some(pair) = run_both(
+        "q-points",
+        &[("rand40.node", &text)],
+        &["-Qq", "rand40.node"],
+    ) else {
         return;
     };
     pair.assert_both_succeeded(what);
@@ -545,15 +610,21 @@ fn quality_meshes_compare_by_measures() {
 
 #[test]
 fn refinement_of_a_mesh_matches_the_reference() {
-    let Some(reference_program) = reference() else { return };
+    let Some(reference_program) = reference() else {
+        return;
+    };
     // The mesh to refine is the reference's triangulation of dots.node.
     let setup = TempDir::new("refine-setup");
     setup.write("dots.node", &data("dots.node"));
     assert!(run(&reference_program, setup.path(), &["-Q", "dots.node"]).ok());
     let (node, ele) = (setup.read("dots.1.node"), setup.read("dots.1.ele"));
-    let triangle_count = files::read_ele(&ele, "dots.1.ele").unwrap().triangle_count();
+    let triangle_count = files::read_ele(&ele, "dots.1.ele")
+        .unwrap()
+        .triangle_count();
     let areas: String = std::iter::once(format!("{triangle_count}\n"))
-        .chain((1..=triangle_count).map(|t| format!("{t} {}\n", if t % 2 == 0 { 0.5 } else { -1.0 })))
+        .chain(
+            (1..=triangle_count).map(|t| format!("{t} {}\n", if t % 2 == 0 { 0.5 } else { -1.0 })),
+        )
         .collect();
     let inputs = [
         ("dots.1.node", node.as_str()),
@@ -593,7 +664,9 @@ fn refinement_of_a_mesh_matches_the_reference() {
 /// (Triangle's own output, without vertices), and the triangles keep their attributes.
 #[test]
 fn refinement_with_segments_reads_the_poly_file() {
-    let Some(reference_program) = reference() else { return };
+    let Some(reference_program) = reference() else {
+        return;
+    };
     let setup = TempDir::new("refine-p-setup");
     setup.write("pslg.poly", &data("pslg.poly"));
     assert!(run(&reference_program, setup.path(), &["-QpA", "pslg.poly"]).ok());
@@ -601,8 +674,13 @@ fn refinement_with_segments_reads_the_poly_file() {
         .iter()
         .map(|name| (name.to_string(), setup.read(name)))
         .collect();
-    let inputs: Vec<(&str, &str)> = texts.iter().map(|(n, t)| (n.as_str(), t.as_str())).collect();
-    for (switches, min_angle, max_area) in [("-Qrpq", Some(20.0), None), ("-Qrpa0.5", None, Some(0.5))] {
+    let inputs: Vec<(&str, &str)> = texts
+        .iter()
+        .map(|(n, t)| (n.as_str(), t.as_str()))
+        .collect();
+    for (switches, min_angle, max_area) in
+        [("-Qrpq", Some(20.0), None), ("-Qrpa0.5", None, Some(0.5))]
+    {
         let what = format!("{switches} pslg.1");
         let Some(pair) = run_both("refine-p", &inputs, &[switches, "pslg.1"]) else {
             return;
@@ -621,7 +699,9 @@ fn refinement_with_segments_reads_the_poly_file() {
 /// mid-edge nodes out of the output.
 #[test]
 fn refinement_of_a_second_order_mesh_drops_the_mid_nodes() {
-    let Some(reference_program) = reference() else { return };
+    let Some(reference_program) = reference() else {
+        return;
+    };
     let setup = TempDir::new("refine-o2-setup");
     setup.write("pslg.poly", &data("pslg.poly"));
     assert!(run(&reference_program, setup.path(), &["-Qpo2", "pslg.poly"]).ok());
@@ -636,8 +716,17 @@ fn refinement_of_a_second_order_mesh_drops_the_mid_nodes() {
     pair.assert_both_succeeded(what);
     // Same vertices, line by line: the corners in input order, without the mid-edge nodes.
     compare_unique(&pair, "pslg.2", what, true);
-    let corners: std::collections::BTreeSet<i32> = input.triangles.chunks_exact(6).flat_map(|t| t[..3].to_vec()).collect();
-    assert_eq!(files::read_node(&pair.ours.read("pslg.2.node"), "n").unwrap().point_count(), corners.len());
+    let corners: std::collections::BTreeSet<i32> = input
+        .triangles
+        .chunks_exact(6)
+        .flat_map(|t| t[..3].to_vec())
+        .collect();
+    assert_eq!(
+        files::read_node(&pair.ours.read("pslg.2.node"), "n")
+            .unwrap()
+            .point_count(),
+        corners.len()
+    );
     let what = "-Qrq pslg.1 (six-node triangles)";
     let Some(pair) = run_both("refine-o2", &inputs, &["-Qrq", "pslg.1"]) else {
         return;
@@ -671,11 +760,16 @@ fn malformed_files_fail_in_both_programs() {
         assert!(!pair.reference_run.ok(), "the reference accepted {input}");
         assert!(!pair.our_run.ok(), "triangle-rs accepted {input}");
         assert!(
-            pair.our_run.stderr.contains(&input[..input.find('.').unwrap()]),
+            pair.our_run
+                .stderr
+                .contains(&input[..input.find('.').unwrap()]),
             "{}",
             pair.our_run.stderr
         );
-        assert!(pair.outputs(input).is_empty(), "{input}: outputs were written");
+        assert!(
+            pair.outputs(input).is_empty(),
+            "{input}: outputs were written"
+        );
     }
 }
 
@@ -779,7 +873,11 @@ fn degenerate_point_sets_agree_on_counts_hull_and_vertices() {
         segments.sort();
         segments
     };
-    assert_eq!(hull(&pair.ours), hull(&pair.reference), "the hull segments differ");
+    assert_eq!(
+        hull(&pair.ours),
+        hull(&pair.reference),
+        "the hull segments differ"
+    );
 }
 
 #[test]
@@ -817,6 +915,10 @@ fn duplicate_vertices_are_reported_and_kept_out_of_the_mesh() {
             set.sort();
             set
         };
-        assert_eq!(corners(&o, &oe), corners(&r, &re), "{what}: triangles differ");
+        assert_eq!(
+            corners(&o, &oe),
+            corners(&r, &re),
+            "{what}: triangles differ"
+        );
     }
 }

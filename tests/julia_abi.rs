@@ -185,10 +185,15 @@ fn julia_package_calls_work_on_the_library() {
         "a case failed:\n{stdout}"
     );
     // Exactly the listed cases passed, each once, and nothing else was reported.
-    let passed: Vec<&str> = stdout.lines().filter_map(|line| line.strip_prefix("PASS ")).collect();
+    let passed: Vec<&str> = stdout
+        .lines()
+        .filter_map(|line| line.strip_prefix("PASS "))
+        .collect();
     assert_eq!(passed, CASES, "not every case passed:\n{stdout}");
     assert!(
-        stdout.lines().all(|line| line.starts_with("PASS ") || line == "0 failed" || line.is_empty()),
+        stdout
+            .lines()
+            .all(|line| line.starts_with("PASS ") || line == "0 failed" || line.is_empty()),
         "unexpected output:\n{stdout}"
     );
 }

@@ -15,7 +15,9 @@ mod common;
 use std::process::Command;
 
 use common::pslg::{self, Pslg};
-use common::pslg_checks::{bypasses_a_vertex, check_constrained_delaunay, pslg_differences, MeshView};
+use common::pslg_checks::{
+    bypasses_a_vertex, check_constrained_delaunay, pslg_differences, MeshView,
+};
 use common::{ours, reference};
 
 const SWITCH_SETS: &[&str] = &[
@@ -35,13 +37,18 @@ fn compare(pslg: &Pslg, switch_sets: &[&str]) {
         let theirs = triangle.triangulate(switches, &input);
         let ours =
             ours(switches, &input).unwrap_or_else(|e| panic!("{}, \"{switches}\": {e}", pslg.name));
-        let theirs_view = MeshView::of(&theirs).unwrap_or_else(|e| panic!("{}: Triangle's: {e}", pslg.name));
-        let ours_view = MeshView::of(&ours).unwrap_or_else(|e| panic!("{}, \"{switches}\": {e}", pslg.name));
-        if bypasses_a_vertex(&pslg.input, &theirs_view) && !bypasses_a_vertex(&pslg.input, &ours_view) {
+        let theirs_view =
+            MeshView::of(&theirs).unwrap_or_else(|e| panic!("{}: Triangle's: {e}", pslg.name));
+        let ours_view =
+            MeshView::of(&ours).unwrap_or_else(|e| panic!("{}, \"{switches}\": {e}", pslg.name));
+        if bypasses_a_vertex(&pslg.input, &theirs_view)
+            && !bypasses_a_vertex(&pslg.input, &ours_view)
+        {
             // Triangle misses a vertex lying on a segment beyond a crossing (its rounded crossing
             // point bends the rest of the segment past the vertex); ours splits the segment there
             // and is checked on its own.
-            check_constrained_delaunay(&ours_view).unwrap_or_else(|e| panic!("{}, \"{switches}\": {e}", pslg.name));
+            check_constrained_delaunay(&ours_view)
+                .unwrap_or_else(|e| panic!("{}, \"{switches}\": {e}", pslg.name));
             continue;
         }
         let diffs = pslg_differences(&input, &ours, &theirs);

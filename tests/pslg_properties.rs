@@ -421,16 +421,54 @@ fn nearly_collinear_crossing_segments_terminate() {
     ];
     // y = x / 2 plus up to 1e-9.
     let offsets = [
-        6.02891e-10, 1.97213e-10, 5.63818e-10, 5.07482e-10, 4.73215e-10, 4.34623e-10, 1.33595e-10,
-        3.2711e-11, 9.94037e-10, 7.13291e-10, 1.81811e-10, 7.5719e-11, 6.90371e-10, 2.5255e-11,
-        2.30275e-10, 9.14682e-10, 2.03213e-10, 9.37895e-10,
+        6.02891e-10,
+        1.97213e-10,
+        5.63818e-10,
+        5.07482e-10,
+        4.73215e-10,
+        4.34623e-10,
+        1.33595e-10,
+        3.2711e-11,
+        9.94037e-10,
+        7.13291e-10,
+        1.81811e-10,
+        7.5719e-11,
+        6.90371e-10,
+        2.5255e-11,
+        2.30275e-10,
+        9.14682e-10,
+        2.03213e-10,
+        9.37895e-10,
     ];
-    let points: Vec<[f64; 2]> = xs.iter().zip(offsets).map(|(&x, o)| [x, 0.5 * x + o]).collect();
+    let points: Vec<[f64; 2]> = xs
+        .iter()
+        .zip(offsets)
+        .map(|(&x, o)| [x, 0.5 * x + o])
+        .collect();
     let segments = vec![
-        [12, 5], [15, 14], [10, 5], [11, 16], [6, 3], [6, 3], [11, 17], [15, 3], [16, 0], [15, 15],
-        [15, 4], [13, 4], [16, 3], [13, 16], [14, 0], [4, 4], [11, 13], [8, 10],
+        [12, 5],
+        [15, 14],
+        [10, 5],
+        [11, 16],
+        [6, 3],
+        [6, 3],
+        [11, 17],
+        [15, 3],
+        [16, 0],
+        [15, 15],
+        [15, 4],
+        [13, 4],
+        [16, 3],
+        [13, 16],
+        [14, 0],
+        [4, 4],
+        [11, 13],
+        [8, 10],
     ];
-    let input = common::MeshInput { segments, ..common::MeshInput::from_points(points) };
+    let input = common::MeshInput {
+        segments,
+        ..common::MeshInput::from_points(points)
+    };
     for switches in ["pzQ", "pczQ"] {
         let out = ours(switches, &input).unwrap_or_else(|e| panic!("\"{switches}\": {e}"));
         let mesh = MeshView::of(&out).unwrap_or_else(|e| panic!("\"{switches}\": {e}"));
@@ -445,14 +483,19 @@ fn nearly_collinear_crossing_segments_terminate() {
 #[test]
 fn repeated_segments_are_inserted_once() {
     for seed in 0..20 {
-        for pslg in [pslg::polygon_with_holes(seed), pslg::crossing_segments(seed, 8, 5)] {
+        for pslg in [
+            pslg::polygon_with_holes(seed),
+            pslg::crossing_segments(seed, 8, 5),
+        ] {
             let mut repeated = pslg.clone();
             let input = &mut repeated.input;
             let count = input.segments.len();
             for s in 0..count {
                 if s % 2 == 0 {
                     let [a, b] = input.segments[s];
-                    input.segments.push(if s % 4 == 0 { [b, a] } else { [a, b] });
+                    input
+                        .segments
+                        .push(if s % 4 == 0 { [b, a] } else { [a, b] });
                     if let Some(markers) = input.segment_markers.as_mut() {
                         markers.push(markers[s]);
                     }
@@ -491,7 +534,10 @@ fn segments_meeting_within_rounding_share_their_vertices() {
         for (i, p) in mesh.points.iter().enumerate() {
             for q in &mesh.points[i + 1..] {
                 let d = ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2)).sqrt();
-                assert!(d == 0.0 || d > 1e-3, "\"{switches}\": vertices {p:?} and {q:?} are {d:e} apart");
+                assert!(
+                    d == 0.0 || d > 1e-3,
+                    "\"{switches}\": vertices {p:?} and {q:?} are {d:e} apart"
+                );
             }
         }
     }

@@ -97,11 +97,25 @@ enum Run {
 
 /// The switch sets compared on every input.
 const SWITCHES: &[&str] = &[
-    "pq", "pq30", "pa0.01", "pq30a0.001", "paA", "pD", "pY", "pYY", "pqY", "pqYY", "po2", "pqo2",
+    "pq",
+    "pq30",
+    "pa0.01",
+    "pq30a0.001",
+    "paA",
+    "pD",
+    "pY",
+    "pYY",
+    "pqY",
+    "pqYY",
+    "po2",
+    "pqo2",
 ];
 
 fn shapes() -> Vec<Input> {
-    pslg::SHAPES.iter().map(|&name| Input::Shape(name)).collect()
+    pslg::SHAPES
+        .iter()
+        .map(|&name| Input::Shape(name))
+        .collect()
 }
 
 fn random_polygons() -> Vec<Input> {
@@ -144,9 +158,9 @@ fn min_angle(switches: &str) -> Option<f64> {
 
 /// `a` without a number: regional (`p`) or per-triangle (`r`) bounds.
 fn variable_area(switches: &str) -> bool {
-    switches
-        .char_indices()
-        .any(|(i, c)| c == 'a' && !switches[i + 1..].starts_with(|d: char| d.is_ascii_digit() || d == '.'))
+    switches.char_indices().any(|(i, c)| {
+        c == 'a' && !switches[i + 1..].starts_with(|d: char| d.is_ascii_digit() || d == '.')
+    })
 }
 
 /// The bound of a previous mesh's triangles with region attribute `attribute` (`None`: the mesh
@@ -239,7 +253,8 @@ fn previous_mesh(pslg: &Pslg, by_triangle: bool, triangle: &Reference) -> Pslg {
     let (who, first) = if by_triangle {
         ("Triangle", triangle.triangulate(switches, &input))
     } else {
-        let out = ours(switches, &input).unwrap_or_else(|e| panic!("{}, \"{switches}\": {e}", pslg.name));
+        let out =
+            ours(switches, &input).unwrap_or_else(|e| panic!("{}, \"{switches}\": {e}", pslg.name));
         ("us", out)
     };
     let area = MeshView::of(&first)
@@ -288,7 +303,11 @@ fn differential(input: Input, run: Run) -> Option<Result<String, String>> {
             (previous_mesh(&input.pslg(), by_triangle, triangle), "rpa")
         }
     };
-    assert!(!pslg.ours_only, "{}: Triangle cannot take this input", pslg.name);
+    assert!(
+        !pslg.ours_only,
+        "{}: Triangle cannot take this input",
+        pslg.name
+    );
     let quiet = format!("{switches}Q");
     let raw = pslg.input_for(&quiet);
     let context = format!("{}, \"{quiet}\"", pslg.name);
@@ -323,7 +342,10 @@ fn all_match(cases: Vec<(Input, Run)>) {
         .into_iter()
         .filter(|case| !DIVERGENT.contains(case))
         .collect();
-    assert!(!cases.is_empty(), "every case is a divergent one: nothing to compare");
+    assert!(
+        !cases.is_empty(),
+        "every case is a divergent one: nothing to compare"
+    );
     let mut failures = Vec::new();
     for &(input, run) in &cases {
         match differential(input, run) {
@@ -345,7 +367,10 @@ fn all_match(cases: Vec<(Input, Run)>) {
 /// One case that must match (for the `#[ignore]`d tests of the divergent cases).
 fn assert_matches(input: Input, run: Run) {
     if let Some(Err(numbers)) = differential(input, run) {
-        panic!("ours has over {}% more triangles than Triangle or a worse smallest angle: {numbers}", COUNT_TOLERANCE * 100.0);
+        panic!(
+            "ours has over {}% more triangles than Triangle or a worse smallest angle: {numbers}",
+            COUNT_TOLERANCE * 100.0
+        );
     }
 }
 
@@ -368,12 +393,14 @@ fn the_square_with_a_circular_hole_refines_like_triangle() {
 
 /// The refinement benchmark's polygon, smaller: many small input angles.
 fn star_cases() -> Vec<(Input, Run)> {
-    let stars = [Input::Star(300, 1), Input::Star(300, 2), Input::Star(1000, 3)];
+    let stars = [
+        Input::Star(300, 1),
+        Input::Star(300, 2),
+        Input::Star(1000, 3),
+    ];
     stars
         .iter()
-        .flat_map(|&star| {
-            ["pq20", "pq30a0.001", "pa0.001", "pD"].map(|s| (star, Run::Switches(s)))
-        })
+        .flat_map(|&star| ["pq20", "pq30a0.001", "pa0.001", "pD"].map(|s| (star, Run::Switches(s))))
         .collect()
 }
 
@@ -393,7 +420,11 @@ fn report() {
     cases.push((Input::SquareWithHole(256), Run::Switches("pq30a0.0002")));
     cases.extend(star_cases());
     for (input, run) in cases {
-        let known = if DIVERGENT.contains(&(input, run)) { "known " } else { "" };
+        let known = if DIVERGENT.contains(&(input, run)) {
+            "known "
+        } else {
+            ""
+        };
         let case = format!("Input::{input:?}, Run::{run:?}");
         match std::panic::catch_unwind(|| differential(input, run)) {
             Ok(None) => return,

@@ -28,8 +28,9 @@ use common::call::MeshInput;
 use common::pslg::{self, Pslg};
 use common::pslg_checks::{check_constrained_delaunay, segment_chains, MeshView};
 use common::quality::{
-    area, area_bound, check_angles, Exemptions, check_areas, check_conforming_delaunay, engine,
+    area, area_bound, check_angles, check_areas, check_conforming_delaunay, engine,
     new_vertices_on_segments, normalized, ours_reentrant, smallest_angle, unrefined_points,
+    Exemptions,
 };
 use common::{ours, Triangulation};
 use triangle_rs::data::Hooks;
@@ -122,7 +123,8 @@ fn random_polygons_reach_every_angle_up_to_the_guaranteed_one() {
             checked(&pslg, &switches, &out, |mesh, chains| {
                 if theta <= GUARANTEED_ANGLE || warnings.is_empty() {
                     assert!(warnings.is_empty(), "{context}: {warnings:?}");
-                    check_angles(mesh, &pslg.input, chains, theta, Exemptions::ShellRule).unwrap_or_else(|e| panic!("{context}: {e}"));
+                    check_angles(mesh, &pslg.input, chains, theta, Exemptions::ShellRule)
+                        .unwrap_or_else(|e| panic!("{context}: {e}"));
                 } else {
                     // Beyond 28.6° refinement may stop at its budget, and must say so.
                     assert!(
@@ -147,8 +149,14 @@ fn a_refinement_stopped_beyond_the_guaranteed_angle_keeps_the_guaranteed_angle()
             let switches = format!("pzq{theta}Q");
             let (out, _) = refined(&pslg, &switches);
             checked(&pslg, &switches, &out, |mesh, chains| {
-                check_angles(mesh, &pslg.input, chains, GUARANTEED_ANGLE, Exemptions::ShellRule)
-                    .unwrap_or_else(|e| panic!("{}, \"{switches}\": {e}", pslg.name));
+                check_angles(
+                    mesh,
+                    &pslg.input,
+                    chains,
+                    GUARANTEED_ANGLE,
+                    Exemptions::ShellRule,
+                )
+                .unwrap_or_else(|e| panic!("{}, \"{switches}\": {e}", pslg.name));
             });
         }
     }
@@ -175,7 +183,8 @@ fn every_triangle_is_within_its_area_bound() {
                 let bound = area_bound(&pslg.input, &out, global, regional);
                 check_areas(mesh, &bound).unwrap_or_else(|e| panic!("{context}: {e}"));
                 if switches.contains('q') {
-                    check_angles(mesh, &pslg.input, chains, 30.0, Exemptions::ShellRule).unwrap_or_else(|e| panic!("{context}: {e}"));
+                    check_angles(mesh, &pslg.input, chains, 30.0, Exemptions::ShellRule)
+                        .unwrap_or_else(|e| panic!("{context}: {e}"));
                 }
             });
         }
@@ -273,8 +282,7 @@ impl Drop for GlobalCallback {
 #[test]
 fn the_user_test_through_the_global_setter() {
     let _callback = GlobalCallback::set(too_big_right_of_zero);
-    let unsuitable =
-        |c: &[[f64; 2]; 3], area: f64| area > GLOBAL_MAX_AREA && centroid_x(c) > 0.0;
+    let unsuitable = |c: &[[f64; 2]; 3], area: f64| area > GLOBAL_MAX_AREA && centroid_x(c) > 0.0;
     for pslg in random_polygons() {
         let unrefined = ours("pzQ", &pslg.input).unwrap();
         for switches in ["pzuQ", "pzq25uQ"] {
@@ -282,7 +290,8 @@ fn the_user_test_through_the_global_setter() {
             let out = ours(switches, &pslg.input).unwrap_or_else(|e| panic!("{context}: {e}"));
             checked(&pslg, switches, &out, |mesh, chains| {
                 if switches.contains('q') {
-                    check_angles(mesh, &pslg.input, chains, 25.0, Exemptions::ShellRule).unwrap_or_else(|e| panic!("{context}: {e}"));
+                    check_angles(mesh, &pslg.input, chains, 25.0, Exemptions::ShellRule)
+                        .unwrap_or_else(|e| panic!("{context}: {e}"));
                 }
             });
             assert_suitable(&context, &out, &unrefined, &unsuitable);
@@ -368,7 +377,10 @@ fn the_user_test_through_the_reentrant_callback_with_user_data() {
                 }
             });
             assert_suitable(&context, &out, &unrefined, &|c, a| limit.unsuitable(c, a));
-            assert!(limit.calls.load(Ordering::Relaxed) > 0, "{context}: never called");
+            assert!(
+                limit.calls.load(Ordering::Relaxed) > 0,
+                "{context}: never called"
+            );
             assert_eq!(limit.foreign_calls.load(Ordering::Relaxed), 0, "{context}");
         }
     }
@@ -462,7 +474,8 @@ fn conforming_delaunay_is_truly_delaunay_with_circumcentres_inside() {
             checked(&pslg, switches, &out, |mesh, chains| {
                 check_conforming_delaunay(mesh).unwrap_or_else(|e| panic!("{context}: {e}"));
                 if switches.contains('q') {
-                    check_angles(mesh, &pslg.input, chains, 25.0, Exemptions::ShellRule).unwrap_or_else(|e| panic!("{context}: {e}"));
+                    check_angles(mesh, &pslg.input, chains, 25.0, Exemptions::ShellRule)
+                        .unwrap_or_else(|e| panic!("{context}: {e}"));
                 }
                 if switches.contains('a') {
                     check_areas(mesh, &|_| Some(0.005))
@@ -648,9 +661,12 @@ fn fan(count: usize, degrees: f64) -> MeshInput {
 fn crossing(degrees: f64) -> MeshInput {
     let t = 0.4 * (degrees.to_radians() / 2.0).tan();
     let mut input = square();
-    input
-        .points
-        .extend([[0.1, 0.5 - t], [0.9, 0.5 + t], [0.1, 0.5 + t], [0.9, 0.5 - t]]);
+    input.points.extend([
+        [0.1, 0.5 - t],
+        [0.9, 0.5 + t],
+        [0.1, 0.5 + t],
+        [0.9, 0.5 - t],
+    ]);
     input.segments.extend([[4, 5], [6, 7]]);
     input
 }
@@ -669,7 +685,10 @@ fn all_return_within(
     seconds: u64,
     cases: Vec<(String, MeshInput, String)>,
 ) -> Vec<Result<Triangulation, String>> {
-    let names: Vec<String> = cases.iter().map(|(n, _, s)| format!("{n}, \"{s}\"")).collect();
+    let names: Vec<String> = cases
+        .iter()
+        .map(|(n, _, s)| format!("{n}, \"{s}\""))
+        .collect();
     let results = within(seconds, move || {
         cases
             .into_iter()
@@ -706,7 +725,11 @@ fn inputs_that_hang_or_crash_triangle_return_within_seconds() {
     }
     for pslg in shapes() {
         for theta in [35, 40, 45, 50, 55, 60] {
-            cases.push((pslg.name.clone(), pslg.input.clone(), format!("pzq{theta}Q")));
+            cases.push((
+                pslg.name.clone(),
+                pslg.input.clone(),
+                format!("pzq{theta}Q"),
+            ));
         }
     }
     let results = all_return_within(20, cases);
@@ -733,12 +756,18 @@ fn segments_crossing_at_a_small_angle_are_protected() {
             let context = format!("{}, \"{switches}\"", pslg.name);
             assert!(warnings.is_empty(), "{context}: {warnings:?}");
             // Triangle: 58 to 264 triangles on these.
-            assert!(out.counts.triangles <= 600, "{context}: {} triangles", out.counts.triangles);
+            assert!(
+                out.counts.triangles <= 600,
+                "{context}: {} triangles",
+                out.counts.triangles
+            );
             checked(&pslg, &switches, &out, |mesh, _| {
                 // With `c` the hull's edges are segments, whose angles count as the input's.
                 let hulled = pslg::with_hull_segments(&pslg.input);
-                let chains = segment_chains(&hulled, mesh, true).unwrap_or_else(|e| panic!("{context}: {e}"));
-                check_angles(mesh, &hulled, &chains, theta, Exemptions::ShellRule).unwrap_or_else(|e| panic!("{context}: {e}"));
+                let chains = segment_chains(&hulled, mesh, true)
+                    .unwrap_or_else(|e| panic!("{context}: {e}"));
+                check_angles(mesh, &hulled, &chains, theta, Exemptions::ShellRule)
+                    .unwrap_or_else(|e| panic!("{context}: {e}"));
             });
         }
     }
@@ -767,10 +796,14 @@ fn small_angles_between_segments_at_a_vertex_are_protected() {
             let (out, warnings) = refined(&pslg, &switches);
             let context = format!("{name}, \"{switches}\"");
             assert!(warnings.is_empty(), "{context}: {warnings:?}");
-            assert!(out.counts.triangles <= 600, "{context}: {} triangles", out.counts.triangles);
+            assert!(
+                out.counts.triangles <= 600,
+                "{context}: {} triangles",
+                out.counts.triangles
+            );
             checked(&pslg, &switches, &out, |mesh, chains| {
-                let report =
-                    check_angles(mesh, &pslg.input, chains, theta, Exemptions::ShellRule).unwrap_or_else(|e| panic!("{context}: {e}"));
+                let report = check_angles(mesh, &pslg.input, chains, theta, Exemptions::ShellRule)
+                    .unwrap_or_else(|e| panic!("{context}: {e}"));
                 assert!(
                     report.excused > 0 || smallest_angle(mesh) >= theta,
                     "{context}"
@@ -822,8 +855,10 @@ fn random_crossings_and_vertices_on_segments_refine_correctly() {
             checked(&pslg, &switches, &out, |mesh, _| {
                 // With `c` the hull's edges are segments, whose angles count as the input's.
                 let hulled = pslg::with_hull_segments(&pslg.input);
-                let chains = segment_chains(&hulled, mesh, true).unwrap_or_else(|e| panic!("{context}: {e}"));
-                check_angles(mesh, &hulled, &chains, theta, Exemptions::ShellRule).unwrap_or_else(|e| panic!("{context}: {e}"));
+                let chains = segment_chains(&hulled, mesh, true)
+                    .unwrap_or_else(|e| panic!("{context}: {e}"));
+                check_angles(mesh, &hulled, &chains, theta, Exemptions::ShellRule)
+                    .unwrap_or_else(|e| panic!("{context}: {e}"));
             });
         }
     }
@@ -841,10 +876,15 @@ fn a_domain_too_thin_for_the_angle_stops_with_a_warning() {
         })
         .collect();
     let input = MeshInput::from_points(points);
-    let pslg = Pslg { convex: true, ..Pslg::new("nearly collinear points".into(), input) };
+    let pslg = Pslg {
+        convex: true,
+        ..Pslg::new("nearly collinear points".into(), input)
+    };
     let (out, warnings) = refined(&pslg, "pczqQ");
     assert!(
-        warnings.iter().any(|w| w.contains("far more than this input")),
+        warnings
+            .iter()
+            .any(|w| w.contains("far more than this input")),
         "{warnings:?}"
     );
     MeshView::of(&out).unwrap_or_else(|e| panic!("{e}"));
@@ -859,32 +899,71 @@ fn a_domain_too_thin_for_the_angle_stops_with_a_warning() {
 /// `pslg::lattice_with_overlaps`).
 #[test]
 fn a_vertex_within_rounding_of_a_segment_is_on_it() {
-    let lattice = |points: &[[i32; 2]]| points.iter().map(|p| [p[0] as f64 / 5.0, p[1] as f64 / 5.0]).collect::<Vec<_>>();
+    let lattice = |points: &[[i32; 2]]| {
+        points
+            .iter()
+            .map(|p| [p[0] as f64 / 5.0, p[1] as f64 / 5.0])
+            .collect::<Vec<_>>()
+    };
     let cases = [
         // Only the segment and the vertex: no segment ends at the vertex.
-        (lattice(&[[4, 0], [1, 3], [2, 2], [0, 0], [5, 5]]), vec![[0, 1]]),
+        (
+            lattice(&[[4, 0], [1, 3], [2, 2], [0, 0], [5, 5]]),
+            vec![[0, 1]],
+        ),
         // The vertex ends a second segment from the same corner, nearly along the first.
         (
-            lattice(&[[4, 0], [1, 3], [5, 2], [0, 3], [3, 2], [0, 0], [2, 0], [4, 2], [2, 2], [4, 5], [0, 5], [1, 0], [0, 1], [0, 4]]),
+            lattice(&[
+                [4, 0],
+                [1, 3],
+                [5, 2],
+                [0, 3],
+                [3, 2],
+                [0, 0],
+                [2, 0],
+                [4, 2],
+                [2, 2],
+                [4, 5],
+                [0, 5],
+                [1, 0],
+                [0, 1],
+                [0, 4],
+            ]),
             vec![[2, 12], [1, 8], [11, 13], [1, 7], [0, 1]],
         ),
     ];
     let pslgs = cases
         .into_iter()
         .map(|(points, segments)| {
-            let input = MeshInput { segments, ..MeshInput::from_points(points) };
-            Pslg { convex: true, ..Pslg::new("lattice with a vertex by a segment".into(), input) }
+            let input = MeshInput {
+                segments,
+                ..MeshInput::from_points(points)
+            };
+            Pslg {
+                convex: true,
+                ..Pslg::new("lattice with a vertex by a segment".into(), input)
+            }
         })
         .chain([pslg::lattice_with_overlaps()]);
     for pslg in pslgs {
         let switches = "pczqQ";
         let (out, warnings) = refined(&pslg, switches);
-        assert!(warnings.iter().all(|w| w.contains("duplicate") || w.contains("coincident")), "{warnings:?}");
+        assert!(
+            warnings
+                .iter()
+                .all(|w| w.contains("duplicate") || w.contains("coincident")),
+            "{warnings:?}"
+        );
         checked(&pslg, switches, &out, |mesh, _| {
-            assert!(mesh.triangles.len() < 300, "{} triangles", mesh.triangles.len());
+            assert!(
+                mesh.triangles.len() < 300,
+                "{} triangles",
+                mesh.triangles.len()
+            );
             let hulled = pslg::with_hull_segments(&pslg.input);
             let chains = segment_chains(&hulled, mesh, true).unwrap_or_else(|e| panic!("{e}"));
-            check_angles(mesh, &hulled, &chains, 20.0, Exemptions::ShellRule).unwrap_or_else(|e| panic!("{e}"));
+            check_angles(mesh, &hulled, &chains, 20.0, Exemptions::ShellRule)
+                .unwrap_or_else(|e| panic!("{e}"));
         });
     }
 }

@@ -198,7 +198,9 @@ impl<P: Predicates> Constrainer<P> {
                     // Where segments overlap, a later non-zero marker replaces a zero one, as in
                     // Triangle.
                     let old = mesh.segment_of(e);
-                    if old == NONE || (self.markers[old as usize] == 0 && self.markers[id as usize] != 0) {
+                    if old == NONE
+                        || (self.markers[old as usize] == 0 && self.markers[id as usize] != 0)
+                    {
                         mesh.set_segment(e, id);
                     }
                     work.push((c, b, id));
@@ -226,8 +228,12 @@ impl<P: Predicates> Constrainer<P> {
                         None => {
                             if !self.retriangulate_cavity(a, stop, id) {
                                 let mesh = &self.inserter.mesh;
-                                let crossed =
-                                    self.scratch.crossed.iter().map(|&h| (mesh.origin(h), mesh.dest(h))).collect();
+                                let crossed = self
+                                    .scratch
+                                    .crossed
+                                    .iter()
+                                    .map(|&h| (mesh.origin(h), mesh.dest(h)))
+                                    .collect();
                                 self.remove_crossings(a, stop, crossed, id);
                             }
                         }
@@ -248,7 +254,11 @@ impl<P: Predicates> Constrainer<P> {
                         // They crossed already: nearly collinear. Rather than a cascade of new
                         // crossing points, this piece goes through the crossed edge's end
                         // nearer to it, on the other segment.
-                        let w = if self.orient(a, b, u).abs() <= self.orient(a, b, v).abs() { u } else { v };
+                        let w = if self.orient(a, b, u).abs() <= self.orient(a, b, v).abs() {
+                            u
+                        } else {
+                            v
+                        };
                         work.push((w, b, id));
                         work.push((a, w, id));
                         continue;
@@ -271,7 +281,7 @@ impl<P: Predicates> Constrainer<P> {
                             work.push((u, w, other));
                         }
                     }
-                },
+                }
             }
         }
         self.scratch.work = work;
@@ -314,7 +324,12 @@ impl<P: Predicates> Constrainer<P> {
         let vertex = self.inserter.mesh.add_point(m);
         let _ = self.inserter.insert_at(vertex, location);
         self.settle(vertex);
-        self.crossings.push(Crossing { vertex, from: a, to: b, t: 0.5 });
+        self.crossings.push(Crossing {
+            vertex,
+            from: a,
+            to: b,
+            t: 0.5,
+        });
         Some(vertex)
     }
 
@@ -332,7 +347,9 @@ impl<P: Predicates> Constrainer<P> {
         loop {
             if mesh.dest(e) == b {
                 let beside = |pu: Point, pv: Point, pw: Point| {
-                    on_line(P::orient2d(pu, pv, pw), pu, pv) && along(pu, pw, pv) && before(pu, pw, pv)
+                    on_line(P::orient2d(pu, pv, pw), pu, pv)
+                        && along(pu, pw, pv)
+                        && before(pu, pw, pv)
                 };
                 return match self.flip_edge_onto_vertex(e, beside) {
                     Some(w) => Walk::Through(w),
@@ -351,7 +368,11 @@ impl<P: Predicates> Constrainer<P> {
         loop {
             let (x, y) = (mesh.dest(e), mesh.apex(e));
             if x != GHOST {
-                let ox = if carried.0 == x { carried.1 } else { P::orient2d(pa, self.pt(x), pb) };
+                let ox = if carried.0 == x {
+                    carried.1
+                } else {
+                    P::orient2d(pa, self.pt(x), pb)
+                };
                 if on_line(ox, pa, pb) && along(pa, self.pt(x), pb) && before(pa, self.pt(x), pb) {
                     return Walk::Along(e);
                 }
@@ -381,7 +402,11 @@ impl<P: Predicates> Constrainer<P> {
     /// that the vertex joins its ends (Lawson flips then make the other edges around locally
     /// Delaunay again), and returns the vertex; a segment edge becomes the two edges to the
     /// vertex. Not when the edge is on the hull or the flip would not be valid.
-    pub fn flip_edge_onto_vertex(&mut self, e: u32, on_edge: impl Fn(Point, Point, Point) -> bool) -> Option<u32> {
+    pub fn flip_edge_onto_vertex(
+        &mut self,
+        e: u32,
+        on_edge: impl Fn(Point, Point, Point) -> bool,
+    ) -> Option<u32> {
         let mesh = &self.inserter.mesh;
         for h in [e, mesh.twin(e)] {
             let f = mesh.twin(h);
@@ -391,7 +416,9 @@ impl<P: Predicates> Constrainer<P> {
             let (u, v, w, z) = (mesh.origin(h), mesh.dest(h), mesh.apex(h), mesh.apex(f));
             let (pu, pv, pw, pz) = (mesh.point(u), mesh.point(v), mesh.point(w), mesh.point(z));
             // The flip needs the quadrilateral u, z, v, w convex: z–w crosses u–v.
-            if !on_edge(pu, pv, pw) || !(P::orient2d(pz, pw, pu) > 0.0 && P::orient2d(pz, pw, pv) < 0.0) {
+            if !on_edge(pu, pv, pw)
+                || !(P::orient2d(pz, pw, pu) > 0.0 && P::orient2d(pz, pw, pv) < 0.0)
+            {
                 continue;
             }
             let id = mesh.segment_of(h);
@@ -414,7 +441,15 @@ impl<P: Predicates> Constrainer<P> {
     /// `h` it crosses (right → left), if that is not `b`.
     fn vertex_on_segment_beyond(&mut self, a: u32, b: u32, h: u32) -> Option<u32> {
         let (pa, pb) = (self.pt(a), self.pt(b));
-        let z = cross_edges::<P>(&self.inserter.mesh, pa, pb, h, false, &mut self.scratch.crossed).ok()?;
+        let z = cross_edges::<P>(
+            &self.inserter.mesh,
+            pa,
+            pb,
+            h,
+            false,
+            &mut self.scratch.crossed,
+        )
+        .ok()?;
         (z != b).then_some(z)
     }
 
@@ -438,7 +473,11 @@ impl<P: Predicates> Constrainer<P> {
         let snap2 = scale2 * SNAP_RELATIVE * SNAP_RELATIVE;
         for (w, at_crossed_end) in [(u, true), (v, true), (a, false), (b, false)] {
             if dist2(self.pt(w)) <= snap2 {
-                return if at_crossed_end { CrossingPoint::Existing(w) } else { CrossingPoint::ThroughVertex(w) };
+                return if at_crossed_end {
+                    CrossingPoint::Existing(w)
+                } else {
+                    CrossingPoint::ThroughVertex(w)
+                };
             }
         }
         let (c, d) = (mesh.apex(e), mesh.apex(mesh.twin(e)));
@@ -458,7 +497,12 @@ impl<P: Predicates> Constrainer<P> {
                     let vertex = self.inserter.mesh.add_point(p);
                     let _ = self.inserter.insert_at(vertex, location);
                     self.settle(vertex);
-                    self.crossings.push(Crossing { vertex, from: u, to: v, t });
+                    self.crossings.push(Crossing {
+                        vertex,
+                        from: u,
+                        to: v,
+                        t,
+                    });
                     CrossingPoint::ThroughVertex(vertex)
                 }
             };
@@ -466,7 +510,12 @@ impl<P: Predicates> Constrainer<P> {
         let vertex = self.inserter.mesh.add_point(p);
         let _ = self.inserter.insert_at(vertex, Location::OnEdge(e));
         self.settle(vertex);
-        self.crossings.push(Crossing { vertex, from: u, to: v, t });
+        self.crossings.push(Crossing {
+            vertex,
+            from: u,
+            to: v,
+            t,
+        });
         CrossingPoint::New(vertex)
     }
 
@@ -482,8 +531,18 @@ impl<P: Predicates> Constrainer<P> {
             // Tags would have to be assigned per new triangle; the flip path does that.
             return false;
         }
-        let Scratch { crossed, left, right, slots, tasks, triangles, outer_links, sorted_slots, inner_links, .. } =
-            &mut self.scratch;
+        let Scratch {
+            crossed,
+            left,
+            right,
+            slots,
+            tasks,
+            triangles,
+            outer_links,
+            sorted_slots,
+            inner_links,
+            ..
+        } = &mut self.scratch;
         let mesh = &self.inserter.mesh;
         let k = crossed.len();
         debug_assert!(k > 0);
@@ -557,7 +616,9 @@ impl<P: Predicates> Constrainer<P> {
             }
             let (v, points) = (&chain.vertices, &chain.points);
             let (u, w) = (points[first as usize], points[last as usize]);
-            let apex = first + 1 + P::smallest_circle(u, w, &points[first as usize + 1..last as usize]) as u32;
+            let apex = first
+                + 1
+                + P::smallest_circle(u, w, &points[first as usize + 1..last as usize]) as u32;
             if P::orient2d(u, w, points[apex as usize]) <= 0.0 {
                 return false;
             }
@@ -587,7 +648,10 @@ impl<P: Predicates> Constrainer<P> {
                 link.1 = link.1.min(mesh.twin(link.1));
             }
             inner_links.sort_unstable_by_key(|&(_, key, _)| key);
-            if inner_links.chunks_exact(2).any(|pair| pair[0].1 != pair[1].1) {
+            if inner_links
+                .chunks_exact(2)
+                .any(|pair| pair[0].1 != pair[1].1)
+            {
                 return false;
             }
         }
@@ -641,7 +705,10 @@ impl<P: Predicates> Constrainer<P> {
             if !convex {
                 queue.push_back((u, v));
                 stalls += 1;
-                assert!(stalls <= 4 * queue.len() * queue.len() + 16, "segment recovery made no progress");
+                assert!(
+                    stalls <= 4 * queue.len() * queue.len() + 16,
+                    "segment recovery made no progress"
+                );
                 continue;
             }
             stalls = 0;
@@ -656,7 +723,11 @@ impl<P: Predicates> Constrainer<P> {
                 new_edges.push((p, q));
             }
         }
-        let e = self.inserter.mesh.find_edge(a, b).expect("segment recovered by flips");
+        let e = self
+            .inserter
+            .mesh
+            .find_edge(a, b)
+            .expect("segment recovered by flips");
         self.inserter.mesh.set_segment(e, id);
         self.restore_delaunay(new_edges);
     }
@@ -666,7 +737,9 @@ impl<P: Predicates> Constrainer<P> {
         let mut stack = edges;
         while let Some((u, v)) = stack.pop() {
             let mesh = &self.inserter.mesh;
-            let Some(e) = mesh.find_edge(u, v) else { continue };
+            let Some(e) = mesh.find_edge(u, v) else {
+                continue;
+            };
             if mesh.is_segment(e) {
                 continue;
             }
@@ -689,7 +762,11 @@ impl<P: Predicates> Constrainer<P> {
         for e in 0..self.inserter.mesh.corners.len() as u32 {
             let mesh = &self.inserter.mesh;
             let (a, b) = (mesh.origin(e), mesh.dest(e));
-            if a != GHOST && b != GHOST && mesh.apex(mesh.twin(e)) == GHOST && mesh.segment_of(e) == NONE {
+            if a != GHOST
+                && b != GHOST
+                && mesh.apex(mesh.twin(e)) == GHOST
+                && mesh.segment_of(e) == NONE
+            {
                 let id = self.new_segment_id(marker, a, b);
                 self.inserter.mesh.set_segment(e, id);
             }
@@ -704,7 +781,9 @@ impl<P: Predicates> Constrainer<P> {
             Location::OnEdge(e) => Some(triangle_of(e)),
             Location::OnVertex(v) => {
                 let e = self.inserter.mesh.vertex_edge[v as usize];
-                (e != NONE).then(|| triangle_of(e)).filter(|&t| !self.inserter.mesh.is_ghost(t))
+                (e != NONE)
+                    .then(|| triangle_of(e))
+                    .filter(|&t| !self.inserter.mesh.is_ghost(t))
             }
             Location::Outside(_) => None,
         }
@@ -774,11 +853,17 @@ mod tests {
     fn assert_constrained_delaunay(m: &Mesh, seed: u64) {
         for t in m.real_triangles() {
             let [p, q, r] = m.triangle(t).map(|v| m.point(v));
-            assert!(Exact::orient2d(p, q, r) > 0.0, "seed {seed}: inverted triangle");
+            assert!(
+                Exact::orient2d(p, q, r) > 0.0,
+                "seed {seed}: inverted triangle"
+            );
             for e in 3 * t..3 * t + 3 {
                 let o = m.apex(m.twin(e));
                 if o != GHOST && !m.is_segment(e) {
-                    assert!(Exact::incircle(p, q, r, m.point(o)) <= 0.0, "seed {seed}: not CDT");
+                    assert!(
+                        Exact::incircle(p, q, r, m.point(o)) <= 0.0,
+                        "seed {seed}: not CDT"
+                    );
                 }
             }
         }
@@ -793,7 +878,10 @@ mod tests {
     /// Delaunay.
     #[test]
     fn random_segments_are_recovered() {
-        let seeds: Vec<u64> = match std::env::var("SEED") { Ok(s) => vec![s.parse().unwrap()], Err(_) => (0..3000).collect() };
+        let seeds: Vec<u64> = match std::env::var("SEED") {
+            Ok(s) => vec![s.parse().unwrap()],
+            Err(_) => (0..3000).collect(),
+        };
         for seed in seeds.into_iter().take(1500) {
             let mut s = seed;
             let n = 5 + (splitmix64(&mut s) % 40) as usize;
@@ -817,16 +905,21 @@ mod tests {
                     .collect();
                 cdt.insert_segment(a, b, id);
                 let m = &cdt.inserter.mesh;
-                m.check_topology().unwrap_or_else(|e| panic!("seed {seed}: {e}"));
+                m.check_topology()
+                    .unwrap_or_else(|e| panic!("seed {seed}: {e}"));
                 for &(u, v) in &segments_before {
                     // A segment edge stays one, unless the new segment crossed it through a
                     // vertex `w` (in floating point): then it was replaced by u-w and w-v.
                     if let Some(e) = m.find_edge(u, v) {
                         let through_vertex = (0..m.points.len() as u32).any(|w| {
-                            let is_segment = |x, y| m.find_edge(x, y).is_some_and(|f| m.is_segment(f));
+                            let is_segment =
+                                |x, y| m.find_edge(x, y).is_some_and(|f| m.is_segment(f));
                             w != u && w != v && is_segment(u, w) && is_segment(w, v)
                         });
-                        assert!(m.is_segment(e) || through_vertex, "seed {seed}: segment edge {u}-{v} lost its mark");
+                        assert!(
+                            m.is_segment(e) || through_vertex,
+                            "seed {seed}: segment edge {u}-{v} lost its mark"
+                        );
                     }
                 }
                 if let Some(e) = m.find_edge(a, b) {
@@ -851,7 +944,9 @@ mod tests {
         for seed in 0..20u64 {
             let mut s = seed;
             let n = 300 + (splitmix64(&mut s) % 700) as usize;
-            let mut angles: Vec<f64> = (0..n).map(|_| rand01(&mut s) * std::f64::consts::TAU).collect();
+            let mut angles: Vec<f64> = (0..n)
+                .map(|_| rand01(&mut s) * std::f64::consts::TAU)
+                .collect();
             angles.sort_by(f64::total_cmp);
             let pts: Vec<Point> = angles
                 .iter()
@@ -860,7 +955,10 @@ mod tests {
                     [r * a.cos(), r * a.sin()]
                 })
                 .collect();
-            let tri = crate::algorithms::delaunay::triangulate::<Exact>(pts.clone(), &hilbert_order(&pts));
+            let tri = crate::algorithms::delaunay::triangulate::<Exact>(
+                pts.clone(),
+                &hilbert_order(&pts),
+            );
             let mut cdt = Constrainer::new(Inserter::<Exact>::new(tri.mesh));
             let mut order: Vec<u32> = (0..n as u32).collect();
             for i in (1..n).rev() {
@@ -872,15 +970,23 @@ mod tests {
                 cdt.insert_segment(a, b, id);
                 if k % 50 == 0 || k + 1 == n {
                     let m = &cdt.inserter.mesh;
-                    m.check_topology().unwrap_or_else(|e| panic!("seed {seed}: {e}"));
+                    m.check_topology()
+                        .unwrap_or_else(|e| panic!("seed {seed}: {e}"));
                     for &j in &order[..=k] {
                         let e = m.find_edge(j, (j + 1) % n as u32).expect("polygon edge");
-                        assert!(m.is_segment(e), "seed {seed}: polygon edge {j} not a segment after {k} insertions");
+                        assert!(
+                            m.is_segment(e),
+                            "seed {seed}: polygon edge {j} not a segment after {k} insertions"
+                        );
                     }
                 }
             }
             let m = &cdt.inserter.mesh;
-            assert_eq!(m.corners.len(), tri_corner_count(n, m), "seed {seed}: no new vertices expected");
+            assert_eq!(
+                m.corners.len(),
+                tri_corner_count(n, m),
+                "seed {seed}: no new vertices expected"
+            );
             assert_constrained_delaunay(m, seed);
         }
     }

@@ -28,22 +28,47 @@ pub const FIRST_REGION: u32 = 2;
 impl Domain {
     /// The domain without regions: every non-ghost triangle is inside.
     pub fn whole(mesh: &mut Mesh) -> Domain {
-        mesh.tag = (0..mesh.triangle_count()).map(|t| if mesh.is_ghost(t) { OUTSIDE } else { INSIDE }).collect();
-        Domain { attribute_count: 0, attributes: Vec::new(), max_area: vec![-1.0; 2] }
+        mesh.tag = (0..mesh.triangle_count())
+            .map(|t| if mesh.is_ghost(t) { OUTSIDE } else { INSIDE })
+            .collect();
+        Domain {
+            attribute_count: 0,
+            attributes: Vec::new(),
+            max_area: vec![-1.0; 2],
+        }
     }
 
     /// The domain of a reconstructed mesh (`r`): input triangle `i` is tagged
     /// `FIRST_REGION + i`, with its attributes and maximum area; ghosts are outside.
-    pub fn per_triangle(mesh: &mut Mesh, input_triangles: usize, attributes: &[f64], areas: Option<&[f64]>) -> Domain {
+    pub fn per_triangle(
+        mesh: &mut Mesh,
+        input_triangles: usize,
+        attributes: &[f64],
+        areas: Option<&[f64]>,
+    ) -> Domain {
         mesh.tag = (0..mesh.triangle_count())
-            .map(|t| if (t as usize) < input_triangles { FIRST_REGION + t } else { OUTSIDE })
+            .map(|t| {
+                if (t as usize) < input_triangles {
+                    FIRST_REGION + t
+                } else {
+                    OUTSIDE
+                }
+            })
             .collect();
-        let attribute_count = if input_triangles == 0 { 0 } else { attributes.len() / input_triangles };
+        let attribute_count = if input_triangles == 0 {
+            0
+        } else {
+            attributes.len() / input_triangles
+        };
         let mut all_attributes = vec![0.0; FIRST_REGION as usize * attribute_count];
         all_attributes.extend_from_slice(attributes);
         let mut max_area = vec![-1.0; FIRST_REGION as usize];
         max_area.extend((0..input_triangles).map(|i| areas.map_or(-1.0, |a| a[i])));
-        Domain { attribute_count, attributes: all_attributes, max_area }
+        Domain {
+            attribute_count,
+            attributes: all_attributes,
+            max_area,
+        }
     }
 
     /// The attributes of the triangles of tag `tag`.
@@ -105,7 +130,9 @@ pub fn carve<P: Predicates>(
         }
     }
     let mut tag = std::mem::take(&mut cdt.inserter.mesh.tag);
-    flood(&cdt.inserter.mesh, seeds, |t| std::mem::replace(&mut tag[t as usize], OUTSIDE) != OUTSIDE);
+    flood(&cdt.inserter.mesh, seeds, |t| {
+        std::mem::replace(&mut tag[t as usize], OUTSIDE) != OUTSIDE
+    });
 
     let mut domain = domain;
     domain.attribute_count = 1;
@@ -115,7 +142,9 @@ pub fn carve<P: Predicates>(
         let region_tag = FIRST_REGION + r as u32;
         domain.attributes.push(region[2]);
         domain.max_area.push(region[3]);
-        let Some(t) = cdt.triangle_at(point) else { continue };
+        let Some(t) = cdt.triangle_at(point) else {
+            continue;
+        };
         flood(&cdt.inserter.mesh, vec![t], |u| {
             let enter = tag[u as usize] != OUTSIDE && tag[u as usize] != region_tag;
             if enter {

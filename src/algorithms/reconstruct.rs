@@ -14,7 +14,12 @@ use crate::mesh::Mesh;
 /// Builds the mesh of the given triangles (`corners` indices per triangle, the first three used,
 /// numbered from `base`). Triangle `i` of the input becomes triangle `i` of the mesh (turned
 /// counter-clockwise if it was clockwise); ghosts follow.
-pub fn reconstruct<P: Predicates>(points: Vec<Point>, triangles: &[i32], corners: usize, base: i32) -> Result<Mesh, Error> {
+pub fn reconstruct<P: Predicates>(
+    points: Vec<Point>,
+    triangles: &[i32],
+    corners: usize,
+    base: i32,
+) -> Result<Mesh, Error> {
     let n = points.len() as i64;
     let count = triangles.len() / corners;
     let mut mesh = Mesh::with_points(points);
@@ -23,13 +28,18 @@ pub fn reconstruct<P: Predicates>(points: Vec<Point>, triangles: &[i32], corners
         for k in 0..3 {
             let index = tri[k] as i64 - base as i64;
             if index < 0 || index >= n {
-                return Err(Error::InvalidTriangleVertex { triangle: i + base as usize });
+                return Err(Error::InvalidTriangleVertex {
+                    triangle: i + base as usize,
+                });
             }
             v[k] = index as u32;
         }
         let o = P::orient2d(mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2]));
         if o == 0.0 {
-            return Err(Error::InvalidMesh(format!("triangle {} has no area", i + base as usize)));
+            return Err(Error::InvalidMesh(format!(
+                "triangle {} has no area",
+                i + base as usize
+            )));
         }
         if o < 0.0 {
             v.swap(1, 2);
@@ -88,9 +98,17 @@ mod tests {
         tris.extend_from_slice(&[15, 17, 16]);
         let mesh = reconstruct::<Exact>(points, &tris, 3, 0).unwrap();
         mesh.check_topology().unwrap();
-        let ghosts = (0..mesh.triangle_count()).filter(|&t| mesh.is_ghost(t)).count();
+        let ghosts = (0..mesh.triangle_count())
+            .filter(|&t| mesh.is_ghost(t))
+            .count();
         assert_eq!(ghosts, 12 + 4 + 3);
-        assert!(reconstruct::<Exact>(vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], &[0, 1, 3], 3, 0).is_err());
-        assert!(reconstruct::<Exact>(vec![[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]], &[0, 1, 2], 3, 0).is_err());
+        assert!(
+            reconstruct::<Exact>(vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], &[0, 1, 3], 3, 0)
+                .is_err()
+        );
+        assert!(
+            reconstruct::<Exact>(vec![[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]], &[0, 1, 2], 3, 0)
+                .is_err()
+        );
     }
 }

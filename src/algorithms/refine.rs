@@ -107,7 +107,10 @@ const EDGE_BUCKETS: usize = 96;
 
 impl BadQueue {
     fn new() -> Self {
-        BadQueue { buckets: (0..=EDGE_BUCKETS).map(|_| VecDeque::new()).collect(), top: 0 }
+        BadQueue {
+            buckets: (0..=EDGE_BUCKETS).map(|_| VecDeque::new()).collect(),
+            top: 0,
+        }
     }
     /// The bucket of a skinny triangle whose shortest edge, squared, is `relative` times the
     /// domain's extent squared.
@@ -125,7 +128,10 @@ impl BadQueue {
     fn pop(&mut self) -> Option<BadTriangle> {
         loop {
             if let Some(corners) = self.buckets[self.top].pop_front() {
-                return Some(BadTriangle { bucket: self.top, corners });
+                return Some(BadTriangle {
+                    bucket: self.top,
+                    corners,
+                });
             }
             if self.top == 0 {
                 return None;
@@ -240,7 +246,11 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
                 hi[i] = hi[i].max(p[i]);
             }
         }
-        let extent = (hi[0] - lo[0]).abs().max((hi[1] - lo[1]).abs()).max(lo[0].abs().max(hi[0].abs()) * 1e-3).max(f64::MIN_POSITIVE);
+        let extent = (hi[0] - lo[0])
+            .abs()
+            .max((hi[1] - lo[1]).abs())
+            .max(lo[0].abs().max(hi[0].abs()) * 1e-3)
+            .max(f64::MIN_POSITIVE);
         let floor = extent * 2f64.powi(-40);
         let mut refiner = Refiner {
             cdt,
@@ -287,7 +297,8 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         // input and the area bounds account for is stopped (an input a hair's breadth wide, such
         // as nearly collinear points with `c`, needs about length/width triangles: billions).
         if self.quality.user_test.is_none() && self.quality.max_steiner.is_none() {
-            let expected = RUNAWAY_PER_TRIANGLE * self.inside_triangle_count() + self.size_estimate();
+            let expected =
+                RUNAWAY_PER_TRIANGLE * self.inside_triangle_count() + self.size_estimate();
             self.runaway_limit = Some(expected.max(RUNAWAY_MINIMUM));
         }
         self.snap_vertices_onto_segments();
@@ -333,8 +344,11 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
     fn refine_beyond_the_guarantee(&mut self, angle: f64) {
         let start = self.snapshot();
         self.set_angle(angle);
-        let budget = STRAIGHT_BUDGET_PER_TRIANGLE * self.inside_triangle_count() + self.size_estimate() + 1024;
-        if self.refine_all_within(Some(self.report.steiner_points + budget)) != Outcome::OutOfBudget {
+        let budget = STRAIGHT_BUDGET_PER_TRIANGLE * self.inside_triangle_count()
+            + self.size_estimate()
+            + 1024;
+        if self.refine_all_within(Some(self.report.steiner_points + budget)) != Outcome::OutOfBudget
+        {
             return;
         }
         let straight = self.snapshot();
@@ -344,7 +358,8 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
             return; // cancelled, or stopped by `S`
         }
         let guaranteed_triangles = self.inside_triangle_count();
-        let limit = straight.steiner_points.max(self.report.steiner_points) + GUARANTEED_MULTIPLE * guaranteed_triangles;
+        let limit = straight.steiner_points.max(self.report.steiner_points)
+            + GUARANTEED_MULTIPLE * guaranteed_triangles;
         if straight.steiner_points < limit {
             let guaranteed = self.snapshot();
             self.restore(straight);
@@ -355,7 +370,9 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
             self.restore(guaranteed);
         }
         self.set_angle(angle);
-        let budget = self.report.steiner_points + UNGUARANTEED_BUDGET_PER_TRIANGLE * guaranteed_triangles + 16;
+        let budget = self.report.steiner_points
+            + UNGUARANTEED_BUDGET_PER_TRIANGLE * guaranteed_triangles
+            + 16;
         if self.refine_all_within(Some(budget)) == Outcome::OutOfBudget {
             self.set_angle(GUARANTEED_ANGLE);
             self.refine_all_within(None);
@@ -419,7 +436,9 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
     }
 
     fn inside_triangle_count(&self) -> u64 {
-        (0..self.cdt.inserter.mesh.triangle_count()).filter(|&t| self.inside(t)).count() as u64
+        (0..self.cdt.inserter.mesh.triangle_count())
+            .filter(|&t| self.inside(t))
+            .count() as u64
     }
 
     /// About how many vertices the area bounds (global, regional, per triangle) ask for: four
@@ -432,7 +451,11 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
                 let [a, b, c] = mesh.triangle(t).map(|v| mesh.point(v));
                 let area = 0.5 * P::orient2d(a, b, c);
                 let regional = if self.quality.variable_area {
-                    self.domain.max_area.get(mesh.tag[t as usize] as usize).copied().filter(|&m| m > 0.0)
+                    self.domain
+                        .max_area
+                        .get(mesh.tag[t as usize] as usize)
+                        .copied()
+                        .filter(|&m| m > 0.0)
                 } else {
                     None
                 };
@@ -453,8 +476,13 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         self.cos2_min_angle = if theta > 0.0 { cos * cos } else { 2.0 };
         // With no angle bound the lens is empty: nothing encroaches, as in Triangle (only a
         // segment hiding a new point from its triangle is split then).
-        self.lens_cos2 = (theta < std::f64::consts::FRAC_PI_4 && !self.conforming).then(|| (2.0 * theta).cos().powi(2));
-        self.off_center = if theta > 0.0 { 0.475 * ((1.0 + cos) / (1.0 - cos)).sqrt() } else { f64::INFINITY };
+        self.lens_cos2 = (theta < std::f64::consts::FRAC_PI_4 && !self.conforming)
+            .then(|| (2.0 * theta).cos().powi(2));
+        self.off_center = if theta > 0.0 {
+            0.475 * ((1.0 + cos) / (1.0 - cos)).sqrt()
+        } else {
+            f64::INFINITY
+        };
     }
 
     /// Makes every vertex that lies within the floor distance of a subsegment, between its
@@ -471,12 +499,17 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
             let length2 = (pv[0] - pu[0]).powi(2) + (pv[1] - pu[1]).powi(2);
             let height = P::orient2d(pu, pv, pw); // |uv| times w's distance from the line
             let near = |a: Point| (pw[0] - a[0]).powi(2) + (pw[1] - a[1]).powi(2) < floor2;
-            height * height < floor2 * length2 && along(pu, pw, pv) && before(pu, pw, pv) && !near(pu) && !near(pv)
+            height * height < floor2 * length2
+                && along(pu, pw, pv)
+                && before(pu, pw, pv)
+                && !near(pu)
+                && !near(pv)
         };
         let mesh = &self.cdt.inserter.mesh;
         // One half-edge per subsegment: the flip looks at the vertices on both sides.
-        let mut work: Vec<u32> =
-            (0..mesh.corners.len() as u32).filter(|&e| mesh.is_segment(e) && e < mesh.twin(e)).collect();
+        let mut work: Vec<u32> = (0..mesh.corners.len() as u32)
+            .filter(|&e| mesh.is_segment(e) && e < mesh.twin(e))
+            .collect();
         while let Some(e) = work.pop() {
             let mesh = &self.cdt.inserter.mesh;
             let (u, v) = (mesh.origin(e), mesh.dest(e));
@@ -485,7 +518,11 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
             }
             if let Some(w) = self.cdt.flip_edge_onto_vertex(e, on_segment) {
                 let mesh = &self.cdt.inserter.mesh;
-                work.extend([(u, w), (w, v)].into_iter().filter_map(|(a, b)| mesh.find_edge(a, b)));
+                work.extend(
+                    [(u, w), (w, v)]
+                        .into_iter()
+                        .filter_map(|(a, b)| mesh.find_edge(a, b)),
+                );
             }
         }
     }
@@ -493,8 +530,9 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
     /// Splits encroached subsegments, then bad triangles, until none is left or a limit stops.
     fn refine_all(&mut self) {
         let mesh = &self.cdt.inserter.mesh;
-        let segments: Vec<u32> =
-            (0..mesh.corners.len() as u32).filter(|&e| mesh.is_segment(e) && e < mesh.twin(e)).collect();
+        let segments: Vec<u32> = (0..mesh.corners.len() as u32)
+            .filter(|&e| mesh.is_segment(e) && e < mesh.twin(e))
+            .collect();
         for e in segments {
             self.check_segment(e);
         }
@@ -508,7 +546,9 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         while !self.should_stop() {
             let Some(bad) = self.bad.pop() else { break };
             let [a, b, c] = bad.corners;
-            let Some(e) = self.cdt.inserter.mesh.find_edge(a, b) else { continue };
+            let Some(e) = self.cdt.inserter.mesh.find_edge(a, b) else {
+                continue;
+            };
             if self.cdt.inserter.mesh.apex(e) != c {
                 continue; // gone since it was queued
             }
@@ -524,11 +564,14 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         }
         self.polls = self.polls.wrapping_add(1);
         if self.polls % 64 == 0 && self.quality.cancel.is_some_and(|cancelled| cancelled()) {
-            self.report.warnings.push("Refinement was cancelled; the mesh is valid but not refined.".into());
+            self.report
+                .warnings
+                .push("Refinement was cancelled; the mesh is valid but not refined.".into());
             self.cancelled = true;
             return true;
         }
-        self.steiner_limit.is_some_and(|limit| self.report.steiner_points >= limit)
+        self.steiner_limit
+            .is_some_and(|limit| self.report.steiner_points >= limit)
     }
 
     /// Whether the segment of half-edge `e` may receive Steiner points (`Y`, `YY`).
@@ -549,7 +592,10 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         let (a, b) = ([pu[0] - w[0], pu[1] - w[1]], [pv[0] - w[0], pv[1] - w[1]]);
         let dot = a[0] * b[0] + a[1] * b[1];
         match self.lens_cos2 {
-            Some(cos2) => dot < 0.0 && dot * dot >= cos2 * (a[0] * a[0] + a[1] * a[1]) * (b[0] * b[0] + b[1] * b[1]),
+            Some(cos2) => {
+                dot < 0.0
+                    && dot * dot >= cos2 * (a[0] * a[0] + a[1] * a[1]) * (b[0] * b[0] + b[1] * b[1])
+            }
             None => dot < 0.0,
         }
     }
@@ -579,7 +625,9 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
                 break;
             }
             let mesh = &self.cdt.inserter.mesh;
-            let Some(e) = mesh.find_edge(u, v).filter(|&e| mesh.is_segment(e)) else { continue };
+            let Some(e) = mesh.find_edge(u, v).filter(|&e| mesh.is_segment(e)) else {
+                continue;
+            };
             let still = [e, mesh.twin(e)].iter().any(|&h| {
                 let w = mesh.apex(h);
                 w != GHOST && self.inside(triangle_of(h)) && self.encroaches(u, v, mesh.point(w))
@@ -639,7 +687,8 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
             [d[0] / length, d[1] / length]
         };
         let start = mesh.vertex_edge[x as usize];
-        let (mut e, mut first, mut previous): (u32, Option<Point>, Option<Point>) = (start, None, None);
+        let (mut e, mut first, mut previous): (u32, Option<Point>, Option<Point>) =
+            (start, None, None);
         let mut sharpest: Option<f64> = None;
         let mut consider = |a: Point, b: Point| {
             let cos = a[0] * b[0] + a[1] * b[1];
@@ -680,11 +729,14 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         let (t, corner) = self.split_parameter(u, v);
         let (pu, pv) = (self.pt(u), self.pt(v));
         let p = [pu[0] + t * (pv[0] - pu[0]), pu[1] + t * (pv[1] - pu[1])];
-        let too_short = |q: Point, r: Point| (q[0] - r[0]).powi(2) + (q[1] - r[1]).powi(2) < self.floor2;
+        let too_short =
+            |q: Point, r: Point| (q[0] - r[0]).powi(2) + (q[1] - r[1]).powi(2) < self.floor2;
         let splits_cleanly = [e, mesh.twin(e)].iter().all(|&h| {
             let w = mesh.apex(h);
             let (a, b) = (mesh.point(mesh.origin(h)), mesh.point(mesh.dest(h)));
-            w == GHOST || (P::orient2d(a, p, mesh.point(w)) > 0.0 && P::orient2d(p, b, mesh.point(w)) > 0.0)
+            w == GHOST
+                || (P::orient2d(a, p, mesh.point(w)) > 0.0
+                    && P::orient2d(p, b, mesh.point(w)) > 0.0)
         });
         if too_short(p, pu) || too_short(p, pv) || !splits_cleanly {
             self.unsplittable.insert((u.min(v), u.max(v)));
@@ -692,7 +744,8 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
             return false;
         }
         let vertex = self.new_vertex(p, VertexKind::OnSegment { corner }, |attrs, i| {
-            attrs[u as usize * i.1 + i.0] + t * (attrs[v as usize * i.1 + i.0] - attrs[u as usize * i.1 + i.0])
+            attrs[u as usize * i.1 + i.0]
+                + t * (attrs[v as usize * i.1 + i.0] - attrs[u as usize * i.1 + i.0])
         });
         let _ = self.cdt.inserter.insert_at(vertex, Location::OnEdge(e));
         self.cdt.settle(vertex);
@@ -701,7 +754,12 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
     }
 
     /// Adds vertex `p` with attributes `attribute(attrs, (i, k))`.
-    fn new_vertex(&mut self, p: Point, kind: VertexKind, attribute: impl Fn(&[f64], (usize, usize)) -> f64) -> u32 {
+    fn new_vertex(
+        &mut self,
+        p: Point,
+        kind: VertexKind,
+        attribute: impl Fn(&[f64], (usize, usize)) -> f64,
+    ) -> u32 {
         let vertex = self.cdt.inserter.mesh.add_point(p);
         let k = self.attribute_count;
         for i in 0..k {
@@ -762,21 +820,41 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         let skinny = self.cos2_min_angle <= 1.0 && {
             let (o, p, q) = (mesh.point(apex), mesh.point(u), mesh.point(v));
             let dot = (p[0] - o[0]) * (q[0] - o[0]) + (p[1] - o[1]) * (q[1] - o[1]);
-            let cos2 = if dot > 0.0 { dot * dot / (l1 * l2) } else { 0.0 };
+            let cos2 = if dot > 0.0 {
+                dot * dot / (l1 * l2)
+            } else {
+                0.0
+            };
             cos2 > self.cos2_min_angle && !self.is_forced_by_input(t, apex, u, v)
         };
         let bad = skinny || {
             let regional = if self.quality.variable_area {
-                self.domain.max_area.get(mesh.tag[t as usize] as usize).copied().unwrap_or(-1.0)
+                self.domain
+                    .max_area
+                    .get(mesh.tag[t as usize] as usize)
+                    .copied()
+                    .unwrap_or(-1.0)
             } else {
                 -1.0
             };
-            let too_big = self.quality.max_area.is_some_and(|m| area > m) || (regional > 0.0 && area > regional);
-            too_big || self.quality.user_test.is_some_and(|f| f(pa[0], pa[1], pb[0], pb[1], pc[0], pc[1], area))
+            let too_big = self.quality.max_area.is_some_and(|m| area > m)
+                || (regional > 0.0 && area > regional);
+            too_big
+                || self
+                    .quality
+                    .user_test
+                    .is_some_and(|f| f(pa[0], pa[1], pb[0], pb[1], pc[0], pc[1], area))
         };
         if bad {
-            let bucket = if skinny { BadQueue::skinny_bucket(shortest / self.extent2) } else { BadQueue::SIZE_BUCKET };
-            self.bad.push(BadTriangle { bucket, corners: [a, b, c] });
+            let bucket = if skinny {
+                BadQueue::skinny_bucket(shortest / self.extent2)
+            } else {
+                BadQueue::SIZE_BUCKET
+            };
+            self.bad.push(BadTriangle {
+                bucket,
+                corners: [a, b, c],
+            });
         }
     }
 
@@ -788,7 +866,9 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
     ///   meet at less than θ (by concentric shells): the triangle lies between shells.
     fn is_forced_by_input(&self, t: u32, apex: u32, u: u32, v: u32) -> bool {
         let mesh = &self.cdt.inserter.mesh;
-        let i = (0..3).find(|&i| mesh.corners[(3 * t + i) as usize] == apex).unwrap_or(0);
+        let i = (0..3)
+            .find(|&i| mesh.corners[(3 * t + i) as usize] == apex)
+            .unwrap_or(0);
         if mesh.is_segment(3 * t + i) && mesh.is_segment(3 * t + (i + 2) % 3) {
             return true;
         }
@@ -809,9 +889,15 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
             if su == sv || ends_u.0 == NONE || ends_v.0 == NONE {
                 return false;
             }
-            match [ends_u.0, ends_u.1].into_iter().find(|&w| w == ends_v.0 || w == ends_v.1) {
+            match [ends_u.0, ends_u.1]
+                .into_iter()
+                .find(|&w| w == ends_v.0 || w == ends_v.1)
+            {
                 Some(w) => self.pt(w),
-                None => match crossing_point([ends_u.0, ends_u.1].map(|w| self.pt(w)), [ends_v.0, ends_v.1].map(|w| self.pt(w))) {
+                None => match crossing_point(
+                    [ends_u.0, ends_u.1].map(|w| self.pt(w)),
+                    [ends_v.0, ends_v.1].map(|w| self.pt(w)),
+                ) {
                     Some(x) => x,
                     None => return false,
                 },
@@ -819,9 +905,16 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         };
         let (p, q) = (self.pt(u), self.pt(v));
         let (a, b) = ([p[0] - o[0], p[1] - o[1]], [q[0] - o[0], q[1] - o[1]]);
-        let (dp, dq, dot) = (a[0] * a[0] + a[1] * a[1], b[0] * b[0] + b[1] * b[1], a[0] * b[0] + a[1] * b[1]);
+        let (dp, dq, dot) = (
+            a[0] * a[0] + a[1] * a[1],
+            b[0] * b[0] + b[1] * b[1],
+            a[0] * b[0] + a[1] * b[1],
+        );
         // Equal distances, and an angle below θ at the corner: a wider corner can be meshed.
-        dp <= 1.002 * dq && dq <= 1.002 * dp && dot > 0.0 && dot * dot > self.cos2_min_angle * dp * dq
+        dp <= 1.002 * dq
+            && dq <= 1.002 * dp
+            && dot > 0.0
+            && dot * dot > self.cos2_min_angle * dp * dq
     }
 
     /// The id of a segment that vertex `v` lies on, if any.
@@ -860,7 +953,10 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         let mid = [0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1])];
         // The bisector toward the triangle (left of p→q, the counter-clockwise side).
         let normal = [-(q[1] - p[1]), q[0] - p[0]];
-        let off = [mid[0] + self.off_center * normal[0], mid[1] + self.off_center * normal[1]];
+        let off = [
+            mid[0] + self.off_center * normal[0],
+            mid[1] + self.off_center * normal[1],
+        ];
         if sq(off, mid) < sq(centre, mid) {
             // Frame coordinates of the off-centre in triangle (a, b, c).
             let det = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
@@ -905,7 +1001,9 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
                     self.split_instead(&encroached, bad);
                     return;
                 }
-                if kept_whole && self.worst_triangle_made(x) < min_angle_sin2(corners.map(|v| self.pt(v))) {
+                if kept_whole
+                    && self.worst_triangle_made(x) < min_angle_sin2(corners.map(|v| self.pt(v)))
+                {
                     self.kept_whole += 1;
                     return;
                 }
@@ -915,7 +1013,11 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
                 }
                 let [a, b, c] = corners;
                 let vertex = self.new_vertex(x, VertexKind::Free, |attrs, (i, k)| {
-                    let (va, vb, vc) = (attrs[a as usize * k + i], attrs[b as usize * k + i], attrs[c as usize * k + i]);
+                    let (va, vb, vc) = (
+                        attrs[a as usize * k + i],
+                        attrs[b as usize * k + i],
+                        attrs[c as usize * k + i],
+                    );
                     va + xi * (vb - va) + eta * (vc - va)
                 });
                 let _ = self.cdt.inserter.insert_at(vertex, location);
@@ -951,10 +1053,14 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
             Location::OnEdge(e) => [triangle_of(e), triangle_of(mesh.twin(e))],
             Location::OnVertex(_) => return true,
         };
-        triangles.iter().flat_map(|&t| mesh.triangle(t)).filter(|&v| v != GHOST).any(|v| {
-            let p = mesh.point(v);
-            (p[0] - x[0]).powi(2) + (p[1] - x[1]).powi(2) < self.floor2
-        })
+        triangles
+            .iter()
+            .flat_map(|&t| mesh.triangle(t))
+            .filter(|&v| v != GHOST)
+            .any(|v| {
+                let p = mesh.point(v);
+                (p[0] - x[0]).powi(2) + (p[1] - x[1]).powi(2) < self.floor2
+            })
     }
 
     /// Walks in a straight line from the centroid of triangle `t` to `x`, staying in the domain.
@@ -1024,13 +1130,20 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         if sides.iter().any(|&side| side < 0.0) {
             return None;
         }
-        let on: Vec<u32> = (0..3).filter(|&i| sides[i as usize] == 0.0).map(|i| 3 * t + i).collect();
+        let on: Vec<u32> = (0..3)
+            .filter(|&i| sides[i as usize] == 0.0)
+            .map(|i| 3 * t + i)
+            .collect();
         Some(match on[..] {
             [] => Walk::Found(Location::InTriangle(t)),
             [e] if mesh.is_segment(e) => Walk::Blocked(e),
             [e] => Walk::Found(Location::OnEdge(e)),
             // On two edges: at their common corner.
-            _ => mesh.triangle(t).into_iter().find(|&w| mesh.point(w) == x).map_or(Walk::Lost, |w| Walk::Found(Location::OnVertex(w))),
+            _ => mesh
+                .triangle(t)
+                .into_iter()
+                .find(|&w| mesh.point(w) == x)
+                .map_or(Walk::Lost, |w| Walk::Found(Location::OnVertex(w))),
         })
     }
 
@@ -1045,7 +1158,9 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         let mesh = &self.cdt.inserter.mesh;
         match location {
             Location::InTriangle(t) | Location::Outside(t) => stack.push(t),
-            Location::OnEdge(e) => stack.extend_from_slice(&[triangle_of(e), triangle_of(mesh.twin(e))]),
+            Location::OnEdge(e) => {
+                stack.extend_from_slice(&[triangle_of(e), triangle_of(mesh.twin(e))])
+            }
             Location::OnVertex(_) => {}
         }
         seen.extend_from_slice(&stack);
@@ -1054,7 +1169,11 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
             for e in 3 * t..3 * t + 3 {
                 if mesh.is_segment(e) {
                     let (u, v) = (mesh.origin(e), mesh.dest(e));
-                    if self.encroaches(u, v, x) && !found.iter().any(|&(a, b, _)| (a, b) == (u, v) || (a, b) == (v, u)) {
+                    if self.encroaches(u, v, x)
+                        && !found
+                            .iter()
+                            .any(|&(a, b, _)| (a, b) == (u, v) || (a, b) == (v, u))
+                    {
                         found.push((u, v, e));
                     }
                     continue;
@@ -1085,7 +1204,11 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
                 if !mesh.is_segment(e) && self.cavity.contains(&triangle_of(mesh.twin(e))) {
                     continue;
                 }
-                worst = worst.min(min_angle_sin2([mesh.point(mesh.origin(e)), mesh.point(mesh.dest(e)), x]));
+                worst = worst.min(min_angle_sin2([
+                    mesh.point(mesh.origin(e)),
+                    mesh.point(mesh.dest(e)),
+                    x,
+                ]));
             }
         }
         worst
@@ -1103,7 +1226,8 @@ fn crossing_point(a: [Point; 2], b: [Point; 2]) -> Option<Point> {
     let f = [b[0][0] - a[0][0], b[0][1] - a[0][1]];
     let s = (f[0] * e[1] - f[1] * e[0]) / denominator;
     let t = (f[0] * d[1] - f[1] * d[0]) / denominator;
-    ((0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&t)).then(|| [a[0][0] + s * d[0], a[0][1] + s * d[1]])
+    ((0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&t))
+        .then(|| [a[0][0] + s * d[0], a[0][1] + s * d[1]])
 }
 
 /// The squared sine of the smallest angle of triangle (a, b, c), which grows with that angle
@@ -1114,7 +1238,11 @@ fn min_angle_sin2([a, b, c]: [Point; 3]) -> f64 {
     let (ab, bc, ca) = (sq(a, b), sq(b, c), sq(c, a));
     let cross = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
     let longest_two = ab * bc * ca / ab.min(bc).min(ca);
-    if longest_two > 0.0 { cross * cross / longest_two } else { 0.0 }
+    if longest_two > 0.0 {
+        cross * cross / longest_two
+    } else {
+        0.0
+    }
 }
 
 #[cfg(test)]
@@ -1125,7 +1253,11 @@ mod tests {
 
     fn mesh(switches: &str, points: &[f64], segments: &[i32]) -> Output {
         let options = Options::parse(switches, SwitchSource::Library).unwrap();
-        let input = Input { points, segments, ..Input::default() };
+        let input = Input {
+            points,
+            segments,
+            ..Input::default()
+        };
         triangulate(&options, &input, &Hooks::default()).unwrap().0
     }
 
@@ -1137,7 +1269,10 @@ mod tests {
             for i in 0..3 {
                 let (a, b, c) = (pt(t[i]), pt(t[(i + 1) % 3]), pt(t[(i + 2) % 3]));
                 let (u, v) = ([b[0] - a[0], b[1] - a[1]], [c[0] - a[0], c[1] - a[1]]);
-                let angle = (u[0] * v[1] - u[1] * v[0]).abs().atan2(u[0] * v[0] + u[1] * v[1]).to_degrees();
+                let angle = (u[0] * v[1] - u[1] * v[0])
+                    .abs()
+                    .atan2(u[0] * v[0] + u[1] * v[1])
+                    .to_degrees();
                 smallest = smallest.min(angle);
             }
         }
@@ -1147,7 +1282,9 @@ mod tests {
     const SQUARE: [f64; 8] = [0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0];
     const SQUARE_SEGMENTS: [i32; 8] = [0, 1, 1, 2, 2, 3, 3, 0];
     /// An outline with a notch and a crossbar meeting a slanted stroke.
-    const SHAPE: [f64; 18] = [0.0, 0.0, 1.0, 0.0, 1.2, 2.0, 1.4, 0.0, 2.4, 0.0, 1.6, 3.0, 0.8, 3.0, 1.1, 1.0, 1.3, 1.0];
+    const SHAPE: [f64; 18] = [
+        0.0, 0.0, 1.0, 0.0, 1.2, 2.0, 1.4, 0.0, 2.4, 0.0, 1.6, 3.0, 0.8, 3.0, 1.1, 1.0, 1.3, 1.0,
+    ];
     const SHAPE_SEGMENTS: [i32; 18] = [0, 1, 1, 7, 7, 8, 8, 2, 2, 3, 3, 4, 4, 5, 5, 6, 6, 0];
 
     #[test]
@@ -1160,7 +1297,11 @@ mod tests {
     fn angle_bound_holds_up_to_the_guaranteed_angle_and_beyond() {
         for angle in [20.0, 25.0, 28.6, 30.0, 33.0] {
             let out = mesh(&format!("pzq{angle}Q"), &SHAPE, &SHAPE_SEGMENTS);
-            assert!(smallest_angle(&out) >= angle - 1e-9, "q{angle}: {}", smallest_angle(&out));
+            assert!(
+                smallest_angle(&out) >= angle - 1e-9,
+                "q{angle}: {}",
+                smallest_angle(&out)
+            );
             assert!(out.warnings.is_empty(), "{:?}", out.warnings);
         }
     }
@@ -1168,7 +1309,17 @@ mod tests {
     #[test]
     fn too_large_an_angle_stops_with_a_warning() {
         let out = mesh("pzq45Q", &SHAPE, &SHAPE_SEGMENTS);
-        assert!(out.triangle_count > 20 && out.triangle_count < 10_000, "{}", out.triangle_count);
-        assert!(out.warnings.iter().any(|w| w.contains("guaranteed to terminate")), "{:?}", out.warnings);
+        assert!(
+            out.triangle_count > 20 && out.triangle_count < 10_000,
+            "{}",
+            out.triangle_count
+        );
+        assert!(
+            out.warnings
+                .iter()
+                .any(|w| w.contains("guaranteed to terminate")),
+            "{:?}",
+            out.warnings
+        );
     }
 }

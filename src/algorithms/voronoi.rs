@@ -10,7 +10,11 @@ use crate::data::VoronoiDiagram;
 use crate::geometry::circumcenter;
 use crate::mesh::{triangle_of, NONE};
 
-pub fn voronoi_diagram(finished: &FinishedMesh<'_>, numbering: &Numbering, base: i32) -> VoronoiDiagram {
+pub fn voronoi_diagram(
+    finished: &FinishedMesh<'_>,
+    numbering: &Numbering,
+    base: i32,
+) -> VoronoiDiagram {
     let mesh = finished.mesh;
     let k = finished.point_attribute_count;
     let attrs = |v: u32| &finished.point_attributes[v as usize * k..v as usize * k + k];
@@ -21,7 +25,8 @@ pub fn voronoi_diagram(finished: &FinishedMesh<'_>, numbering: &Numbering, base:
         let (centre, xi, eta) = circumcenter(mesh.point(o), mesh.point(d), mesh.point(a));
         points.extend_from_slice(&centre);
         let (ao, ad, aa) = (attrs(o), attrs(d), attrs(a));
-        point_attributes.extend((0..k).map(|i| ao[i] + xi * (ad[i] - ao[i]) + eta * (aa[i] - ao[i])));
+        point_attributes
+            .extend((0..k).map(|i| ao[i] + xi * (ad[i] - ao[i]) + eta * (aa[i] - ao[i])));
     }
     let mut edges = Vec::with_capacity(2 * numbering.edges.len());
     let mut norms = Vec::with_capacity(2 * numbering.edges.len());
@@ -39,5 +44,10 @@ pub fn voronoi_diagram(finished: &FinishedMesh<'_>, numbering: &Numbering, base:
             norms.extend_from_slice(&[q[1] - p[1], p[0] - q[0]]);
         }
     }
-    VoronoiDiagram { points, point_attributes, edges, norms }
+    VoronoiDiagram {
+        points,
+        point_attributes,
+        edges,
+        norms,
+    }
 }

@@ -13,8 +13,8 @@ use std::process::ExitCode;
 
 use triangle_rs::data::{Hooks, Input, Output, VoronoiOutput};
 use triangle_rs::io::files::{
-    self, check_vertex_indices, next_iteration_name, split_input_name, AreaFile, EleData, EleFile, FileError, NodeData,
-    NodeFile, PolyData, PolyFile, PolyVertices,
+    self, check_vertex_indices, next_iteration_name, split_input_name, AreaFile, EleData, EleFile,
+    FileError, NodeData, NodeFile, PolyData, PolyFile, PolyVertices,
 };
 use triangle_rs::io::svg::{write_svg, SvgScene, SvgVoronoi};
 use triangle_rs::options::{Options, SwitchSource};
@@ -265,10 +265,15 @@ fn read_inputs(base: &str, options: &Options) -> Result<InputFiles, Failure> {
         let name = format!("{base}.poly");
         // Triangle reads the region section only for A or a-without-number, and not with r.
         let read_regions = (options.region_attributes || options.variable_area) && !options.refine;
-        poly = Some((files::read_poly(&read_text(&name, quiet)?, &name, read_regions)?, name));
+        poly = Some((
+            files::read_poly(&read_text(&name, quiet)?, &name, read_regions)?,
+            name,
+        ));
     }
     let (vertices, vertex_file) = match poly.as_mut() {
-        Some((p, name)) if p.vertices.point_count() > 0 => (std::mem::take(&mut p.vertices), name.clone()),
+        Some((p, name)) if p.vertices.point_count() > 0 => {
+            (std::mem::take(&mut p.vertices), name.clone())
+        }
         _ => {
             let name = format!("{base}.node");
             (files::read_node(&read_text(&name, quiet)?, &name)?, name)
@@ -355,7 +360,9 @@ fn required<'a, T>(array: &'a Option<Vec<T>>, what: &str) -> Result<&'a [T], Fai
 }
 
 fn main() -> ExitCode {
-    let args: Vec<String> = std::env::args_os().map(|a| a.to_string_lossy().into_owned()).collect();
+    let args: Vec<String> = std::env::args_os()
+        .map(|a| a.to_string_lossy().into_owned())
+        .collect();
     if args.len() <= 1 {
         print!("{USAGE}");
         return ExitCode::SUCCESS;
@@ -375,8 +382,11 @@ fn run(args: &[String]) -> Result<(), Failure> {
     // The extension's switches are parsed with the user's, so Triangle's rules that combine
     // switches (A needs p, a-without-number needs p or r) see them.
     let implied = input_name.as_ref().map_or("", |n| n.implied_switches);
-    let mut options = Options::parse(&format!("{implied}{}", arguments.switches), SwitchSource::CommandLine)
-        .map_err(|e| fail(e.to_string()))?;
+    let mut options = Options::parse(
+        &format!("{implied}{}", arguments.switches),
+        SwitchSource::CommandLine,
+    )
+    .map_err(|e| fail(e.to_string()))?;
     if options.help {
         print!("{HELP}");
         return Ok(());
@@ -466,8 +476,8 @@ fn run(args: &[String]) -> Result<(), Failure> {
         no_boundary_markers: false,
         ..options.clone()
     };
-    let (mesh, voronoi) =
-        pipeline::triangulate(&engine_options, &input, &Hooks::default()).map_err(|e| fail(e.to_string()))?;
+    let (mesh, voronoi) = pipeline::triangulate(&engine_options, &input, &Hooks::default())
+        .map_err(|e| fail(e.to_string()))?;
     if !quiet {
         for warning in &mesh.warnings {
             eprintln!("triangle-rs: warning: {warning}");
@@ -545,7 +555,10 @@ fn plan_outputs<'a>(
             write: Box::new(move |w| files::write_ele(w, &ele, first_index, generated_by)),
         });
     }
-    if (options.pslg || options.convex_hull) && !options.no_poly_output && !options.no_iteration_numbers {
+    if (options.pslg || options.convex_hull)
+        && !options.no_poly_output
+        && !options.no_iteration_numbers
+    {
         let data = PolyData {
             vertices: PolyVertices::InNodeFile {
                 attribute_count: mesh.point_attribute_count,
@@ -574,7 +587,9 @@ fn plan_outputs<'a>(
         };
         planned.push(PlannedFile {
             path: path("edge"),
-            write: Box::new(move |w| files::write_edge(w, edges, edge_markers, first_index, generated_by)),
+            write: Box::new(move |w| {
+                files::write_edge(w, edges, edge_markers, first_index, generated_by)
+            }),
         });
     }
     if options.voronoi {
@@ -590,12 +605,20 @@ fn plan_outputs<'a>(
         };
         planned.push(PlannedFile {
             path: path("v.node"),
-            write: Box::new(move |w| files::write_node(w, &voronoi_nodes, first_index, generated_by)),
+            write: Box::new(move |w| {
+                files::write_node(w, &voronoi_nodes, first_index, generated_by)
+            }),
         });
         planned.push(PlannedFile {
             path: path("v.edge"),
             write: Box::new(move |w| {
-                files::write_voronoi_edge(w, &diagram.edges, &diagram.norms, first_index, generated_by)
+                files::write_voronoi_edge(
+                    w,
+                    &diagram.edges,
+                    &diagram.norms,
+                    first_index,
+                    generated_by,
+                )
             }),
         });
     }
@@ -610,7 +633,9 @@ fn plan_outputs<'a>(
         let edge_count = mesh.edge_count;
         planned.push(PlannedFile {
             path: path("off"),
-            write: Box::new(move |w| files::write_off(w, points, &ele, edge_count, first_index, generated_by)),
+            write: Box::new(move |w| {
+                files::write_off(w, points, &ele, edge_count, first_index, generated_by)
+            }),
         });
     }
     if let Some(svg) = &arguments.svg {
@@ -697,7 +722,12 @@ const ASPECT_BOUNDS: [f64; 15] = [
     1.5, 2.0, 2.5, 3.0, 4.0, 6.0, 10.0, 15.0, 25.0, 50.0, 100.0, 300.0, 1000.0, 10000.0, 100000.0,
 ];
 
-fn measure_quality(points: &[f64], triangles: &[i32], corners: usize, first_index: i32) -> Option<Quality> {
+fn measure_quality(
+    points: &[f64],
+    triangles: &[i32],
+    corners: usize,
+    first_index: i32,
+) -> Option<Quality> {
     let mut q = Quality {
         smallest_area: f64::INFINITY,
         largest_area: 0.0,
@@ -720,7 +750,8 @@ fn measure_quality(points: &[f64], triangles: &[i32], corners: usize, first_inde
         let p = [corner(t[0]), corner(t[1]), corner(t[2])];
         // Twice the area, and squared lengths: the ratio's bin is decided on squares, without
         // square roots, so a ratio exactly on a bound (e.g. 1.5) lands in the bin it closes.
-        let double_area = ((p[1].0 - p[0].0) * (p[2].1 - p[0].1) - (p[1].1 - p[0].1) * (p[2].0 - p[0].0)).abs();
+        let double_area =
+            ((p[1].0 - p[0].0) * (p[2].1 - p[0].1) - (p[1].1 - p[0].1) * (p[2].0 - p[0].0)).abs();
         let mut longest_squared: f64 = 0.0;
         for k in 0..3 {
             let (a, b, c) = (p[k], p[(k + 1) % 3], p[(k + 2) % 3]);
@@ -730,7 +761,10 @@ fn measure_quality(points: &[f64], triangles: &[i32], corners: usize, first_inde
             q.longest_edge = q.longest_edge.max(edge_squared.sqrt());
             // The angle at corner a, between the edges to b and to c.
             let (u, v) = ((b.0 - a.0, b.1 - a.1), (c.0 - a.0, c.1 - a.1));
-            let angle = (u.0 * v.1 - u.1 * v.0).abs().atan2(u.0 * v.0 + u.1 * v.1).to_degrees();
+            let angle = (u.0 * v.1 - u.1 * v.0)
+                .abs()
+                .atan2(u.0 * v.0 + u.1 * v.1)
+                .to_degrees();
             q.smallest_angle = q.smallest_angle.min(angle);
             q.largest_angle = q.largest_angle.max(angle);
             // Bins include their upper bound, as Triangle's: a right angle counts in 80-90.
@@ -805,7 +839,10 @@ fn print_statistics(options: &Options, input: &Input<'_>, mesh: &Output) {
     let boundary = boundary_edge_count(triangles, mesh.corners);
     println!("  Mesh boundary edges: {boundary}");
     if options.uses_segments() {
-        println!("  Mesh segments (constrained edges): {}", mesh.segment_count);
+        println!(
+            "  Mesh segments (constrained edges): {}",
+            mesh.segment_count
+        );
         println!(
             "  Mesh segments inside the domain: {}",
             mesh.segment_count.saturating_sub(boundary)
@@ -815,7 +852,9 @@ fn print_statistics(options: &Options, input: &Input<'_>, mesh: &Output) {
     if options.verbose == 0 {
         return;
     }
-    let Some(points) = mesh.points.as_deref() else { return };
+    let Some(points) = mesh.points.as_deref() else {
+        return;
+    };
     let first_index = options.first_index();
     let Some(q) = measure_quality(points, triangles, mesh.corners, first_index) else {
         println!("Mesh quality: no triangles.\n");
@@ -850,7 +889,11 @@ fn print_statistics(options: &Options, input: &Input<'_>, mesh: &Output) {
     }
     let half = rows.len().div_ceil(2);
     for i in 0..half {
-        println!("    {}    {}", rows[i], rows.get(i + half).map_or("", |s| s.as_str()));
+        println!(
+            "    {}    {}",
+            rows[i],
+            rows.get(i + half).map_or("", |s| s.as_str())
+        );
     }
     println!(
         "\n  Smallest angle: {:>10}    Largest angle: {:>10}",

@@ -87,7 +87,11 @@ impl PencilFrame {
             w,
             c,
             coefficients: [a1 - a2, b1 - b2, c1 - c2],
-            permanents: [a1.abs() + a2.abs(), b1.abs() + b2.abs(), c1.abs() + c2.abs()],
+            permanents: [
+                a1.abs() + a2.abs(),
+                b1.abs() + b2.abs(),
+                c1.abs() + c2.abs(),
+            ],
         }
     }
 
@@ -188,7 +192,9 @@ impl Predicates for Inexact {
         let alift = adx * adx + ady * ady;
         let blift = bdx * bdx + bdy * bdy;
         let clift = cdx * cdx + cdy * cdy;
-        alift * (bdx * cdy - cdx * bdy) + blift * (cdx * ady - adx * cdy) + clift * (adx * bdy - bdx * ady)
+        alift * (bdx * cdy - cdx * bdy)
+            + blift * (cdx * ady - adx * cdy)
+            + clift * (adx * bdy - bdx * ady)
     }
 }
 
@@ -231,7 +237,8 @@ mod tests {
     #[test]
     fn pencil_frame_matches_incircle() {
         let mut s = 11u64;
-        let mut rand = || crate::algorithms::delaunay::order::splitmix64(&mut s) as f64 / u64::MAX as f64;
+        let mut rand =
+            || crate::algorithms::delaunay::order::splitmix64(&mut s) as f64 / u64::MAX as f64;
         for round in 0..20_000 {
             let u = [rand(), rand()];
             let w = [rand(), rand()];
@@ -245,19 +252,33 @@ mod tests {
                 let angle = rand() * std::f64::consts::TAU;
                 [centre[0] + r * angle.cos(), centre[1] + r * angle.sin()]
             };
-            let (w, c) = if Exact::orient2d(u, w, c) > 0.0 { (w, c) } else { (c, w) };
+            let (w, c) = if Exact::orient2d(u, w, c) > 0.0 {
+                (w, c)
+            } else {
+                (c, w)
+            };
             let expected = Exact::incircle(u, w, c, p) > 0.0;
-            assert_eq!(PencilFrame::new(u, w, c).strictly_inside(p), expected, "round {round}");
+            assert_eq!(
+                PencilFrame::new(u, w, c).strictly_inside(p),
+                expected,
+                "round {round}"
+            );
         }
         // Exactly cocircular: never strictly inside.
         let (u, w, c) = ([0.0, 0.0], [4.0, 0.0], [4.0, 4.0]);
         assert!(!PencilFrame::new(u, w, c).strictly_inside([0.0, 4.0]));
         assert!(PencilFrame::new(u, w, c).strictly_inside([1.0, 1.0]));
         // The fast and the default choice agree.
-        let candidates: Vec<Point> = (0..50).map(|i| [i as f64 * 0.1, 1.0 + ((i * 7) % 11) as f64 * 0.3]).collect();
+        let candidates: Vec<Point> = (0..50)
+            .map(|i| [i as f64 * 0.1, 1.0 + ((i * 7) % 11) as f64 * 0.3])
+            .collect();
         let (u, w) = ([0.0, 0.0], [5.0, 0.0]);
         let by_default = (1..candidates.len()).fold(0, |best, i| {
-            if Exact::incircle(u, w, candidates[best], candidates[i]) > 0.0 { i } else { best }
+            if Exact::incircle(u, w, candidates[best], candidates[i]) > 0.0 {
+                i
+            } else {
+                best
+            }
         });
         assert_eq!(Exact::smallest_circle(u, w, &candidates), by_default);
     }
@@ -268,7 +289,10 @@ mod tests {
         let (c, xi, eta) = circumcenter(o, d, a);
         let r = |p: Point| ((p[0] - c[0]).powi(2) + (p[1] - c[1]).powi(2)).sqrt();
         assert!((r(o) - r(d)).abs() < 1e-12 && (r(o) - r(a)).abs() < 1e-12);
-        let back = [o[0] + xi * (d[0] - o[0]) + eta * (a[0] - o[0]), o[1] + xi * (d[1] - o[1]) + eta * (a[1] - o[1])];
+        let back = [
+            o[0] + xi * (d[0] - o[0]) + eta * (a[0] - o[0]),
+            o[1] + xi * (d[1] - o[1]) + eta * (a[1] - o[1]),
+        ];
         assert!((back[0] - c[0]).abs() < 1e-12 && (back[1] - c[1]).abs() < 1e-12);
     }
 }

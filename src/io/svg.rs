@@ -48,12 +48,16 @@ const MAX_VERTEX_DOTS: usize = 20_000;
 /// markers hues spread by the golden angle, so that nearby markers differ.
 pub fn marker_colour(marker: i32) -> String {
     const PALETTE: [&str; 10] = [
-        "#d62728", "#1f77b4", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf", "#bcbd22", "#393b79",
+        "#d62728", "#1f77b4", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf",
+        "#bcbd22", "#393b79",
     ];
     match marker {
         0 => "#555555".to_string(),
         1..=10 => PALETTE[marker as usize - 1].to_string(),
-        _ => format!("hsl({:.0},70%,42%)", (marker as f64 * 137.508).rem_euclid(360.0)),
+        _ => format!(
+            "hsl({:.0},70%,42%)",
+            (marker as f64 * 137.508).rem_euclid(360.0)
+        ),
     }
 }
 
@@ -116,7 +120,11 @@ fn escape_xml(text: &str) -> String {
 
 /// A pastel colour for `t` in [0, 1] (blue to orange), for triangle attributes.
 fn pastel(t: f64) -> String {
-    let t = if t.is_finite() { t.clamp(0.0, 1.0) } else { 0.0 };
+    let t = if t.is_finite() {
+        t.clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
     let hue = 210.0 - 180.0 * t;
     format!("hsl({hue:.0},70%,85%)")
 }
@@ -193,7 +201,11 @@ pub fn write_svg(w: &mut impl Write, scene: &SvgScene<'_>) -> io::Result<()> {
         }
         match first_attribute(t) {
             Some(a) => {
-                let t = if high > low { (a - low) / (high - low) } else { 0.0 };
+                let t = if high > low {
+                    (a - low) / (high - low)
+                } else {
+                    0.0
+                };
                 writeln!(w, r#"" fill="{}"/>"#, pastel(t))?;
             }
             None => writeln!(w, r#""/>"#)?,
@@ -213,20 +225,31 @@ pub fn write_svg(w: &mut impl Write, scene: &SvgScene<'_>) -> io::Result<()> {
             r##"<g id="voronoi" clip-path="url(#frame)" stroke="#2e8b57" stroke-width="0.8" fill="none">"##
         )?;
         for (e, pair) in voronoi.edges.chunks_exact(2).enumerate() {
-            let Some(start) = vertex(pair[0]) else { continue };
+            let Some(start) = vertex(pair[0]) else {
+                continue;
+            };
             let end = if pair[1] == -1 {
-                let (dx, dy) = (voronoi.norms.get(2 * e).copied(), voronoi.norms.get(2 * e + 1).copied());
+                let (dx, dy) = (
+                    voronoi.norms.get(2 * e).copied(),
+                    voronoi.norms.get(2 * e + 1).copied(),
+                );
                 let (dx, dy) = (dx.unwrap_or(0.0), dy.unwrap_or(0.0));
                 let length = dx.hypot(dy);
                 if length.is_nan() || length <= 0.0 {
                     continue;
                 }
-                (start.0 + dx / length * ray_length, start.1 + dy / length * ray_length)
+                (
+                    start.0 + dx / length * ray_length,
+                    start.1 + dy / length * ray_length,
+                )
             } else {
                 let Some(end) = vertex(pair[1]) else { continue };
                 end
             };
-            if ![start.0, start.1, end.0, end.1].iter().all(|c| c.is_finite()) {
+            if ![start.0, start.1, end.0, end.1]
+                .iter()
+                .all(|c| c.is_finite())
+            {
                 continue;
             }
             writeln!(
@@ -251,12 +274,18 @@ pub fn write_svg(w: &mut impl Write, scene: &SvgScene<'_>) -> io::Result<()> {
 
     // Segments, coloured by marker.
     let mut markers_seen: Vec<i32> = Vec::new();
-    writeln!(w, r#"<g id="segments" stroke-width="2.5" stroke-linecap="round">"#)?;
+    writeln!(
+        w,
+        r#"<g id="segments" stroke-width="2.5" stroke-linecap="round">"#
+    )?;
     for (s, pair) in scene.segments.chunks_exact(2).enumerate() {
         let (Some(a), Some(b)) = (point(pair[0]), point(pair[1])) else {
             continue;
         };
-        let marker = scene.segment_markers.and_then(|m| m.get(s).copied()).unwrap_or(0);
+        let marker = scene
+            .segment_markers
+            .and_then(|m| m.get(s).copied())
+            .unwrap_or(0);
         if !markers_seen.contains(&marker) {
             markers_seen.push(marker);
         }
@@ -285,7 +314,10 @@ pub fn write_svg(w: &mut impl Write, scene: &SvgScene<'_>) -> io::Result<()> {
         writeln!(w, "</g>")?;
     }
 
-    writeln!(w, r##"<g id="holes" stroke="#cc0000" stroke-width="2" fill="none">"##)?;
+    writeln!(
+        w,
+        r##"<g id="holes" stroke="#cc0000" stroke-width="2" fill="none">"##
+    )?;
     for h in scene.holes.chunks_exact(2) {
         let (x, y) = (frame.x(h[0]), frame.y(h[1]));
         writeln!(

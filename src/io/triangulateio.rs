@@ -77,14 +77,20 @@ impl Default for TriangulateIO {
 }
 
 fn count(field: &'static str, value: c_int) -> Result<usize, Error> {
-    usize::try_from(value).map_err(|_| Error::BadCount { field, value: value as i64 })
+    usize::try_from(value).map_err(|_| Error::BadCount {
+        field,
+        value: value as i64,
+    })
 }
 
 fn product(field: &'static str, items: usize, width: usize) -> Result<usize, Error> {
     items
         .checked_mul(width)
         .filter(|&n| n <= isize::MAX as usize / 8)
-        .ok_or(Error::BadCount { field, value: items as i64 })
+        .ok_or(Error::BadCount {
+            field,
+            value: items as i64,
+        })
 }
 
 /// A required array of `len` items: NULL is an error unless `len` is 0.
@@ -122,14 +128,21 @@ unsafe fn optional<'a, T>(p: *const T, len: usize) -> Option<&'a [T]> {
 ///
 /// # Safety
 /// Every non-NULL array of `tio` that is read must hold as many items as its count says.
-pub unsafe fn input_from_raw<'a>(tio: &'a TriangulateIO, options: &Options) -> Result<Input<'a>, Error> {
+pub unsafe fn input_from_raw<'a>(
+    tio: &'a TriangulateIO,
+    options: &Options,
+) -> Result<Input<'a>, Error> {
     let n = count("numberofpoints", tio.numberofpoints)?;
     let nattr = count("numberofpointattributes", tio.numberofpointattributes)?;
     let mut input = Input {
         // SAFETY (all reads below): the caller's contract above.
         points: unsafe { required("pointlist", tio.pointlist, product("numberofpoints", n, 2)?)? },
         point_attributes: unsafe {
-            required("pointattributelist", tio.pointattributelist, product("numberofpointattributes", n, nattr)?)?
+            required(
+                "pointattributelist",
+                tio.pointattributelist,
+                product("numberofpointattributes", n, nattr)?,
+            )?
         },
         point_attribute_count: nattr,
         point_markers: unsafe { optional(tio.pointmarkerlist, n) },
@@ -143,8 +156,13 @@ pub unsafe fn input_from_raw<'a>(tio: &'a TriangulateIO, options: &Options) -> R
         let corners = count("numberofcorners", tio.numberofcorners)?;
         let ntattr = count("numberoftriangleattributes", tio.numberoftriangleattributes)?;
         input.corners = corners;
-        input.triangles =
-            unsafe { required("trianglelist", tio.trianglelist, product("numberoftriangles", ntri, corners)?)? };
+        input.triangles = unsafe {
+            required(
+                "trianglelist",
+                tio.trianglelist,
+                product("numberoftriangles", ntri, corners)?,
+            )?
+        };
         input.triangle_attribute_count = ntattr;
         input.triangle_attributes = unsafe {
             required(
@@ -154,26 +172,47 @@ pub unsafe fn input_from_raw<'a>(tio: &'a TriangulateIO, options: &Options) -> R
             )?
         };
         if options.variable_area {
-            input.triangle_areas = Some(unsafe { required("trianglearealist", tio.trianglearealist, ntri)? });
+            input.triangle_areas =
+                Some(unsafe { required("trianglearealist", tio.trianglearealist, ntri)? });
         }
     }
     if options.pslg {
         let nseg = count("numberofsegments", tio.numberofsegments)?;
-        input.segments = unsafe { required("segmentlist", tio.segmentlist, product("numberofsegments", nseg, 2)?)? };
+        input.segments = unsafe {
+            required(
+                "segmentlist",
+                tio.segmentlist,
+                product("numberofsegments", nseg, 2)?,
+            )?
+        };
         input.segment_markers = unsafe { optional(tio.segmentmarkerlist, nseg) };
         if !options.refine {
             let nholes = count("numberofholes", tio.numberofholes)?;
             let nregions = count("numberofregions", tio.numberofregions)?;
-            input.holes = unsafe { required("holelist", tio.holelist, product("numberofholes", nholes, 2)?)? };
-            input.regions =
-                unsafe { required("regionlist", tio.regionlist, product("numberofregions", nregions, 4)?)? };
+            input.holes = unsafe {
+                required(
+                    "holelist",
+                    tio.holelist,
+                    product("numberofholes", nholes, 2)?,
+                )?
+            };
+            input.regions = unsafe {
+                required(
+                    "regionlist",
+                    tio.regionlist,
+                    product("numberofregions", nregions, 4)?,
+                )?
+            };
         }
     }
     Ok(input)
 }
 
 fn to_c_int(field: &'static str, value: usize) -> Result<c_int, Error> {
-    c_int::try_from(value).map_err(|_| Error::BadCount { field, value: value as i64 })
+    c_int::try_from(value).map_err(|_| Error::BadCount {
+        field,
+        value: value as i64,
+    })
 }
 
 /// One array to hand to the caller: the destination field and the data.
@@ -250,7 +289,10 @@ pub unsafe fn write_output(
     macro_rules! push {
         ($tio:expr, $field:ident, $data:expr) => {
             if let Some(d) = $data {
-                transfers.push(Transfer { field: field_ptr!($tio, $field), bytes: as_bytes(d) });
+                transfers.push(Transfer {
+                    field: field_ptr!($tio, $field),
+                    bytes: as_bytes(d),
+                });
             }
         };
     }
@@ -258,7 +300,11 @@ pub unsafe fn write_output(
     push!(out, pointattributelist, output.point_attributes.as_deref());
     push!(out, pointmarkerlist, output.point_markers.as_deref());
     push!(out, trianglelist, output.triangles.as_deref());
-    push!(out, triangleattributelist, output.triangle_attributes.as_deref());
+    push!(
+        out,
+        triangleattributelist,
+        output.triangle_attributes.as_deref()
+    );
     push!(out, neighborlist, output.neighbors.as_deref());
     push!(out, segmentlist, output.segments.as_deref());
     push!(out, segmentmarkerlist, output.segment_markers.as_deref());
@@ -270,7 +316,10 @@ pub unsafe fn write_output(
         to_c_int("numberofpointattributes", output.point_attribute_count)?,
         to_c_int("numberoftriangles", output.triangle_count)?,
         to_c_int("numberofcorners", output.corners)?,
-        to_c_int("numberoftriangleattributes", output.triangle_attribute_count)?,
+        to_c_int(
+            "numberoftriangleattributes",
+            output.triangle_attribute_count,
+        )?,
         to_c_int("numberofsegments", output.segment_count)?,
         to_c_int("numberofholes", output.hole_count)?,
         to_c_int("numberofregions", output.region_count)?,

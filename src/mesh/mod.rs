@@ -173,7 +173,11 @@ impl Mesh {
             for &t in triangles {
                 for e in 3 * t..3 * t + 3 {
                     let f = self.twins[e as usize];
-                    self.segment[e as usize] = if inner.contains(&e) { NONE } else { self.segment[f as usize] };
+                    self.segment[e as usize] = if inner.contains(&e) {
+                        NONE
+                    } else {
+                        self.segment[f as usize]
+                    };
                 }
             }
         }
@@ -255,7 +259,9 @@ impl Mesh {
     /// edge entering `v` in the same part, and their ghosts share `v–∞`. A ghost takes the
     /// segment id of its boundary edge and the tag [`OUTSIDE`].
     pub fn cover_boundary_with_ghosts(&mut self) {
-        let boundary: Vec<u32> = (0..self.corners.len() as u32).filter(|&e| self.twins[e as usize] == NONE).collect();
+        let boundary: Vec<u32> = (0..self.corners.len() as u32)
+            .filter(|&e| self.twins[e as usize] == NONE)
+            .collect();
         for &h in &boundary {
             let g = self.add_triangle(self.dest(h), self.origin(h), GHOST);
             self.link(h, 3 * g);
@@ -301,16 +307,21 @@ impl Mesh {
         }
         let tracks_segments = !old.segment.is_empty();
         let tracks_tags = !old.tag.is_empty();
-        let mut mesh = Mesh { points: old.points.clone(), ..Mesh::default() };
+        let mut mesh = Mesh {
+            points: old.points.clone(),
+            ..Mesh::default()
+        };
         for t in 0..old.triangle_count() {
             if new_index[t as usize] == NONE {
                 continue;
             }
-            mesh.corners.extend_from_slice(&old.corners[3 * t as usize..3 * t as usize + 3]);
+            mesh.corners
+                .extend_from_slice(&old.corners[3 * t as usize..3 * t as usize + 3]);
             for e in 3 * t..3 * t + 3 {
                 let f = old.twins[e as usize];
                 let u = new_index[triangle_of(f) as usize];
-                mesh.twins.push(if u == NONE { NONE } else { 3 * u + f % 3 });
+                mesh.twins
+                    .push(if u == NONE { NONE } else { 3 * u + f % 3 });
                 if tracks_segments {
                     mesh.segment.push(old.segment[e as usize]);
                 }
@@ -357,7 +368,17 @@ impl Mesh {
         self.link(3 * t + 1, 3 * t1 + 2);
         self.link(3 * t1 + 1, 3 * t2 + 2);
         self.link(3 * t2 + 1, 3 * t + 2);
-        self.refresh(&[t, t1, t2], &[3 * t + 1, 3 * t + 2, 3 * t1 + 1, 3 * t1 + 2, 3 * t2 + 1, 3 * t2 + 2]);
+        self.refresh(
+            &[t, t1, t2],
+            &[
+                3 * t + 1,
+                3 * t + 2,
+                3 * t1 + 1,
+                3 * t1 + 2,
+                3 * t2 + 1,
+                3 * t2 + 2,
+            ],
+        );
         if !self.tag.is_empty() {
             let tag = self.tag[t as usize];
             self.tag.extend_from_slice(&[tag, tag]);
@@ -388,7 +409,16 @@ impl Mesh {
         self.link(3 * t2 + 2, 3 * t4 + 1); // p-b
         self.link(3 * t3 + 1, 3 * t4 + 2); // d-p
         let (ap, pa, pb, bp) = (3 * t1 + 1, 3 * t3 + 2, 3 * t2 + 2, 3 * t4 + 1);
-        let inner = [ap, pa, pb, bp, 3 * t1 + 2, 3 * t2 + 1, 3 * t3 + 1, 3 * t4 + 2];
+        let inner = [
+            ap,
+            pa,
+            pb,
+            bp,
+            3 * t1 + 2,
+            3 * t2 + 1,
+            3 * t3 + 1,
+            3 * t4 + 2,
+        ];
         self.refresh(&[t1, t2, t3, t4], &inner);
         if !self.tag.is_empty() {
             // t1 and t2 now lie on e's side, t3 and t4 on its twin's.
@@ -431,8 +461,13 @@ impl Mesh {
                 let side = |x: u32, y: u32, z: u32| {
                     let (px, py, pz) = (self.point(x), self.point(y), self.point(z));
                     let g = [(px[0] + py[0] + pz[0]) / 3.0, (px[1] + py[1] + pz[1]) / 3.0];
-                    let left = (pb[0] - pa[0]) * (g[1] - pa[1]) - (pb[1] - pa[1]) * (g[0] - pa[0]) > 0.0;
-                    if left { tag1 } else { tag2 }
+                    let left =
+                        (pb[0] - pa[0]) * (g[1] - pa[1]) - (pb[1] - pa[1]) * (g[0] - pa[0]) > 0.0;
+                    if left {
+                        tag1
+                    } else {
+                        tag2
+                    }
                 };
                 let (new1, new2) = (side(a, q, p), side(q, b, p));
                 self.tag[t1 as usize] = new1;
@@ -459,7 +494,9 @@ impl Mesh {
                 return Err(format!("twins of {e} and {f} are not mutual"));
             }
             if self.origin(e) != self.dest(f) || self.dest(e) != self.origin(f) {
-                return Err(format!("half-edges {e} and {f} do not join the same vertices"));
+                return Err(format!(
+                    "half-edges {e} and {f} do not join the same vertices"
+                ));
             }
         }
         Ok(())

@@ -17,7 +17,8 @@ impl TempDir {
     pub fn new(tag: &str) -> TempDir {
         static COUNTER: AtomicUsize = AtomicUsize::new(0);
         let n = COUNTER.fetch_add(1, Ordering::Relaxed);
-        let path = std::env::temp_dir().join(format!("triangle-rs-cli-{}-{tag}-{n}", std::process::id()));
+        let path =
+            std::env::temp_dir().join(format!("triangle-rs-cli-{}-{tag}-{n}", std::process::id()));
         let _ = std::fs::remove_dir_all(&path);
         std::fs::create_dir_all(&path).expect("create a temporary directory");
         TempDir(path)
@@ -43,7 +44,12 @@ impl TempDir {
     pub fn files(&self) -> BTreeSet<String> {
         std::fs::read_dir(&self.0)
             .expect("list a temporary directory")
-            .map(|e| e.expect("directory entry").file_name().to_string_lossy().into_owned())
+            .map(|e| {
+                e.expect("directory entry")
+                    .file_name()
+                    .to_string_lossy()
+                    .into_owned()
+            })
             .collect()
     }
 }
@@ -101,7 +107,9 @@ pub fn run(program: &Path, dir: &Path, args: &[&str]) -> Run {
 
 /// A hand-written input file from tests/data.
 pub fn data(name: &str) -> String {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(name);
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data")
+        .join(name);
     std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("read {}: {e}", path.display()))
 }
 
@@ -124,7 +132,13 @@ impl Lcg {
 
 /// A `.node` file of `n` random vertices in general position (full-precision coordinates),
 /// with `attributes` attributes and, if `markers`, a marker column (every fifth vertex marked).
-pub fn random_node_file(seed: u64, n: usize, attributes: usize, markers: bool, first_index: usize) -> String {
+pub fn random_node_file(
+    seed: u64,
+    n: usize,
+    attributes: usize,
+    markers: bool,
+    first_index: usize,
+) -> String {
     let mut rng = Lcg::new(seed);
     let mut text = format!(
         "# {n} random vertices (seed {seed})\n{n} 2 {attributes} {}\n",
@@ -137,7 +151,10 @@ pub fn random_node_file(seed: u64, n: usize, attributes: usize, markers: bool, f
             text.push_str(&format!(" {}", rng.next() * 100.0));
         }
         if markers {
-            text.push_str(&format!(" {}", if i % 5 == 0 { (i % 3) as i32 + 2 } else { 0 }));
+            text.push_str(&format!(
+                " {}",
+                if i % 5 == 0 { (i % 3) as i32 + 2 } else { 0 }
+            ));
         }
         text.push('\n');
     }
@@ -167,13 +184,15 @@ pub struct Results {
 impl Results {
     /// Reads `<base>.node` in `dir`; the numbering base is that of the first vertex.
     pub fn read(dir: &TempDir, node_file: &str) -> Results {
-        let node = files::read_node(&dir.read(node_file), node_file).expect("parse the .node output");
+        let node =
+            files::read_node(&dir.read(node_file), node_file).expect("parse the .node output");
         let first_index = node.first_number.unwrap_or(1) as i32;
         Results { node, first_index }
     }
 
     pub fn point(&self, v: i32) -> Point {
-        let i = usize::try_from(v - self.first_index).unwrap_or_else(|_| panic!("vertex {v} below the base"));
+        let i = usize::try_from(v - self.first_index)
+            .unwrap_or_else(|_| panic!("vertex {v} below the base"));
         point_key(self.node.points[2 * i], self.node.points[2 * i + 1])
     }
 
@@ -183,17 +202,26 @@ impl Results {
         (0..ele.triangle_count())
             .map(|t| {
                 let nodes = &ele.triangles[t * ele.corners..(t + 1) * ele.corners];
-                let corners = [self.point(nodes[0]), self.point(nodes[1]), self.point(nodes[2])];
+                let corners = [
+                    self.point(nodes[0]),
+                    self.point(nodes[1]),
+                    self.point(nodes[2]),
+                ];
                 let r = (0..3).min_by_key(|&k| corners[k]).unwrap();
                 let rotated = [corners[r], corners[(r + 1) % 3], corners[(r + 2) % 3]];
                 // Second-order nodes follow their opposite corners.
                 let extra: Vec<Point> = if ele.corners == 6 {
-                    let mids = [self.point(nodes[3]), self.point(nodes[4]), self.point(nodes[5])];
+                    let mids = [
+                        self.point(nodes[3]),
+                        self.point(nodes[4]),
+                        self.point(nodes[5]),
+                    ];
                     vec![mids[r], mids[(r + 1) % 3], mids[(r + 2) % 3]]
                 } else {
                     Vec::new()
                 };
-                let attributes = ele.attributes[t * ele.attribute_count..(t + 1) * ele.attribute_count]
+                let attributes = ele.attributes
+                    [t * ele.attribute_count..(t + 1) * ele.attribute_count]
                     .iter()
                     .map(|a| a.to_bits())
                     .collect();
@@ -260,7 +288,10 @@ pub fn smallest_angle(t: &[Point; 3]) -> f64 {
         .map(|k| {
             let (a, b, c) = (p[k], p[(k + 1) % 3], p[(k + 2) % 3]);
             let (u, v) = ((b.0 - a.0, b.1 - a.1), (c.0 - a.0, c.1 - a.1));
-            (u.0 * v.1 - u.1 * v.0).abs().atan2(u.0 * v.0 + u.1 * v.1).to_degrees()
+            (u.0 * v.1 - u.1 * v.0)
+                .abs()
+                .atan2(u.0 * v.0 + u.1 * v.1)
+                .to_degrees()
         })
         .fold(180.0, f64::min)
 }
@@ -274,7 +305,9 @@ pub fn close(a: f64, b: f64, tolerance: f64) -> bool {
 pub fn without_footer(text: &str) -> Vec<&str> {
     let mut lines: Vec<&str> = text.lines().collect();
     assert!(
-        lines.last().is_some_and(|l| l.starts_with("# Generated by ")),
+        lines
+            .last()
+            .is_some_and(|l| l.starts_with("# Generated by ")),
         "the file does not end with a `# Generated by` line:\n{text}"
     );
     lines.pop();

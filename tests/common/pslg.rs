@@ -319,15 +319,28 @@ pub fn polygon_with_holes_of(seed: u64, corners: usize) -> Pslg {
 /// `input` with the edges of its convex hull added as segments: with `c` they are segments of
 /// the output, and the angles they make with the input segments are angles of the input.
 pub fn with_hull_segments(input: &MeshInput) -> MeshInput {
-    let index = |p: Point| input.points.iter().position(|&q| q == p).expect("a hull point is an input point");
-    let hull: Vec<i32> = convex_hull(&input.points).into_iter().map(|p| index(p) as i32).collect();
+    let index = |p: Point| {
+        input
+            .points
+            .iter()
+            .position(|&q| q == p)
+            .expect("a hull point is an input point")
+    };
+    let hull: Vec<i32> = convex_hull(&input.points)
+        .into_iter()
+        .map(|p| index(p) as i32)
+        .collect();
     let mut segments = input.segments.clone();
     segments.extend((0..hull.len()).map(|i| [hull[i], hull[(i + 1) % hull.len()]]));
     let segment_markers = input.segment_markers.clone().map(|mut markers| {
         markers.resize(segments.len(), 1);
         markers
     });
-    MeshInput { segments, segment_markers, ..input.clone() }
+    MeshInput {
+        segments,
+        segment_markers,
+        ..input.clone()
+    }
 }
 
 pub fn crossing_segments(seed: u64, n: usize, m: usize) -> Pslg {
@@ -583,15 +596,68 @@ pub fn square_with_hole(circle_segments: usize) -> Pslg {
 /// splitting a segment"). Duplicate points and a segment with equal ends included.
 pub fn lattice_with_overlaps() -> Pslg {
     let lattice = [
-        [1, 1], [4, 2], [2, 4], [3, 1], [5, 5], [0, 2], [4, 0], [2, 3], [3, 0], [5, 3], [4, 2], [0, 4],
-        [5, 0], [5, 1], [2, 5], [2, 4], [3, 0], [2, 5], [1, 3], [0, 5], [3, 1], [4, 2], [5, 1],
+        [1, 1],
+        [4, 2],
+        [2, 4],
+        [3, 1],
+        [5, 5],
+        [0, 2],
+        [4, 0],
+        [2, 3],
+        [3, 0],
+        [5, 3],
+        [4, 2],
+        [0, 4],
+        [5, 0],
+        [5, 1],
+        [2, 5],
+        [2, 4],
+        [3, 0],
+        [2, 5],
+        [1, 3],
+        [0, 5],
+        [3, 1],
+        [4, 2],
+        [5, 1],
     ];
     let segments = vec![
-        [0, 18], [7, 10], [3, 2], [19, 1], [6, 3], [3, 18], [21, 21], [5, 20], [11, 6], [19, 8], [20, 1],
-        [20, 7], [14, 7], [1, 0], [0, 1], [9, 18], [14, 21], [10, 2], [20, 2], [6, 16], [13, 10], [13, 6],
-        [16, 21], [3, 5], [15, 20],
+        [0, 18],
+        [7, 10],
+        [3, 2],
+        [19, 1],
+        [6, 3],
+        [3, 18],
+        [21, 21],
+        [5, 20],
+        [11, 6],
+        [19, 8],
+        [20, 1],
+        [20, 7],
+        [14, 7],
+        [1, 0],
+        [0, 1],
+        [9, 18],
+        [14, 21],
+        [10, 2],
+        [20, 2],
+        [6, 16],
+        [13, 10],
+        [13, 6],
+        [16, 21],
+        [3, 5],
+        [15, 20],
     ];
-    let points = lattice.iter().map(|p| [p[0] as f64 / 5.0, p[1] as f64 / 5.0]).collect();
-    let input = MeshInput { segments, ..MeshInput::from_points(points) };
-    Pslg { convex: true, ours_only: true, ..Pslg::new("lattice with overlapping segments".into(), input) }
+    let points = lattice
+        .iter()
+        .map(|p| [p[0] as f64 / 5.0, p[1] as f64 / 5.0])
+        .collect();
+    let input = MeshInput {
+        segments,
+        ..MeshInput::from_points(points)
+    };
+    Pslg {
+        convex: true,
+        ours_only: true,
+        ..Pslg::new("lattice with overlapping segments".into(), input)
+    }
 }

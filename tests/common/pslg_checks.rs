@@ -209,7 +209,13 @@ pub fn check_locally_delaunay(mesh: &MeshView<'_>, segments_too: bool) -> Result
             continue;
         }
         let (apex, opposite) = (mesh.triangles[t][k], mesh.triangles[u][l]);
-        if incircle(mesh.points[a], mesh.points[b], mesh.points[apex], mesh.points[opposite]) > 0.0 {
+        if incircle(
+            mesh.points[a],
+            mesh.points[b],
+            mesh.points[apex],
+            mesh.points[opposite],
+        ) > 0.0
+        {
             return Err(format!(
                 "edge {a}-{b} ({}a segment) is not locally Delaunay: vertex {opposite} lies inside the circumcircle of {:?}",
                 if segment { "" } else { "not " },
@@ -292,7 +298,8 @@ pub fn segment_chains(
         let on_line = |p: Point| {
             let cross = (p[0] - pa[0]) * d[1] - (p[1] - pa[1]) * d[0];
             if input_places.contains(&bits(p)) {
-                let snap = (SNAPPED_RELATIVE_TO_SEGMENT * length2.sqrt()).max(SNAPPED_RELATIVE_TO_EXTENT * extent);
+                let snap = (SNAPPED_RELATIVE_TO_SEGMENT * length2.sqrt())
+                    .max(SNAPPED_RELATIVE_TO_EXTENT * extent);
                 orient2d(pa, pb, p) == 0.0 || cross.abs() <= 1.001 * snap * length2.sqrt()
             } else {
                 cross.abs() <= NEW_VERTEX_TOLERANCE * length2

@@ -210,7 +210,11 @@ pub fn input_angles(
         let here = mesh.points[v];
         let toward = |w: usize| [mesh.points[w][0] - here[0], mesh.points[w][1] - here[1]];
         let (first, last) = (chain[0], chain[chain.len() - 1]);
-        [first, last].into_iter().filter(|&w| w != v).map(toward).collect()
+        [first, last]
+            .into_iter()
+            .filter(|&w| w != v)
+            .map(toward)
+            .collect()
     };
     let between = |u: Point, w: Point| {
         (u[0] * w[1] - u[1] * w[0])
@@ -280,7 +284,11 @@ pub fn check_angles(
     exemptions: Exemptions,
 ) -> Result<AngleReport, String> {
     let shells = exemptions == Exemptions::ShellRule;
-    let meetings = input_angles(mesh, chains, if shells { 60.0 } else { theta } + ANGLE_TOLERANCE);
+    let meetings = input_angles(
+        mesh,
+        chains,
+        if shells { 60.0 } else { theta } + ANGLE_TOLERANCE,
+    );
     let below_theta: Vec<&InputAngle> = meetings
         .iter()
         .filter(|m| m.degrees < theta + ANGLE_TOLERANCE)
@@ -312,7 +320,9 @@ pub fn check_angles(
     for c in &mesh.triangles {
         let [a, b, d] = c.map(|v| mesh.points[v]);
         let angle = angles(a, b, d);
-        let k = (0..3).min_by(|&i, &j| angle[i].total_cmp(&angle[j])).unwrap();
+        let k = (0..3)
+            .min_by(|&i, &j| angle[i].total_cmp(&angle[j]))
+            .unwrap();
         let smallest = angle[k];
         report.smallest = report.smallest.min(smallest);
         if smallest >= theta - ANGLE_TOLERANCE {
@@ -390,9 +400,10 @@ pub fn area_bound(
 ) -> impl Fn(usize) -> Option<f64> {
     let width = out.counts.triangle_attributes.max(0) as usize;
     let region_attribute: Vec<f64> = match (&out.triangle_attributes, regional) {
-        (Some(attributes), true) if width > 0 => {
-            attributes.chunks_exact(width).map(|a| a[width - 1]).collect()
-        }
+        (Some(attributes), true) if width > 0 => attributes
+            .chunks_exact(width)
+            .map(|a| a[width - 1])
+            .collect(),
         _ => {
             assert!(
                 !regional || input.regions.is_empty(),
@@ -492,9 +503,8 @@ impl<'m> Locator<'m> {
     }
 
     fn cell_of(&self, p: Point) -> (usize, usize) {
-        let index = |x: f64, lo: f64| {
-            (((x - lo) / self.cell).floor().max(0.0) as usize).min(self.side - 1)
-        };
+        let index =
+            |x: f64, lo: f64| (((x - lo) / self.cell).floor().max(0.0) as usize).min(self.side - 1);
         (index(p[0], self.lo[0]), index(p[1], self.lo[1]))
     }
 
@@ -528,9 +538,7 @@ pub fn new_vertices_on_segments(
 ) -> Vec<(usize, Point)> {
     let mut found = Vec::new();
     for (&segment, chain) in chains {
-        let on_boundary = chain
-            .windows(2)
-            .any(|w| mesh.is_boundary_edge(w[0], w[1]));
+        let on_boundary = chain.windows(2).any(|w| mesh.is_boundary_edge(w[0], w[1]));
         if boundary_only && !on_boundary {
             continue;
         }
@@ -556,14 +564,20 @@ pub fn check_second_order(
 ) -> Result<usize, String> {
     let out = mesh.out;
     if out.counts.corners != 6 {
-        return Err(format!("{} corners per triangle, not 6", out.counts.corners));
+        return Err(format!(
+            "{} corners per triangle, not 6",
+            out.counts.corners
+        ));
     }
     let nodes = out.triangles.as_deref().unwrap_or_default();
     let base = out.base as usize;
     let mut midpoint_of: HashMap<[usize; 2], usize> = HashMap::new();
     let mut edge_of: HashMap<usize, [usize; 2]> = HashMap::new();
     for (t, row) in nodes.chunks_exact(6).enumerate() {
-        let row: Vec<usize> = row.iter().map(|&v| (v as usize).wrapping_sub(base)).collect();
+        let row: Vec<usize> = row
+            .iter()
+            .map(|&v| (v as usize).wrapping_sub(base))
+            .collect();
         if row.iter().any(|&v| v >= mesh.points.len()) {
             return Err(format!("triangle {t} {row:?} has a node out of range"));
         }
@@ -594,7 +608,11 @@ pub fn check_second_order(
             }
         }
     }
-    let edge_count = mesh.edges.keys().filter(|&&(a, b)| a < b || !mesh.edges.contains_key(&(b, a))).count();
+    let edge_count = mesh
+        .edges
+        .keys()
+        .filter(|&&(a, b)| a < b || !mesh.edges.contains_key(&(b, a)))
+        .count();
     if midpoint_of.len() != edge_count {
         return Err(format!(
             "{} midpoint nodes for {edge_count} edges",
@@ -603,7 +621,9 @@ pub fn check_second_order(
     }
     for (&m, edge) in &edge_of {
         if mesh.in_mesh[m] {
-            return Err(format!("the midpoint node {m} of edge {edge:?} is a corner too"));
+            return Err(format!(
+                "the midpoint node {m} of edge {edge:?} is a corner too"
+            ));
         }
         if let Some(markers) = &out.point_markers {
             let expected = edge_marker(edge[0], edge[1]);

@@ -116,7 +116,9 @@ pub fn timed_call(library: Library, switches: &str, input: &MeshInput) -> (Times
     let (call, free): (Box<RawCall<'_>>, Box<dyn Fn(*mut c_void)>) = match library {
         Library::Ours => (
             // SAFETY: valid switches and structs prepared by `run_call`.
-            Box::new(|s, i, o, v| ours_status(unsafe { triangle_rs::ffi::triangulate(s, i, o, v) })),
+            Box::new(|s, i, o, v| {
+                ours_status(unsafe { triangle_rs::ffi::triangulate(s, i, o, v) })
+            }),
             // SAFETY: arrays returned by our `triangulate` are freed with our `trifree`.
             Box::new(|p| unsafe { triangle_rs::ffi::trifree(p) }),
         ),
@@ -132,11 +134,12 @@ pub fn timed_call(library: Library, switches: &str, input: &MeshInput) -> (Times
         ),
     };
     let times = Cell::new(None);
-    let timed = |s: *mut c_char, i: *mut TriangulateIO, o: *mut TriangulateIO, v: *mut TriangulateIO| {
-        let (t, result) = Times::measure(|| call(s, i, o, v));
-        times.set(Some(t));
-        result
-    };
+    let timed =
+        |s: *mut c_char, i: *mut TriangulateIO, o: *mut TriangulateIO, v: *mut TriangulateIO| {
+            let (t, result) = Times::measure(|| call(s, i, o, v));
+            times.set(Some(t));
+            result
+        };
     let output = run_call(&timed, &*free, switches, input, false)
         .unwrap_or_else(|message| panic!("triangulate failed: {message}"));
     (times.get().expect("run_call made the call"), output)

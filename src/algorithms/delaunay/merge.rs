@@ -41,15 +41,21 @@ fn triangulate_half<P: Predicates>(points: &[Point], ids: &[u32]) -> Option<Half
             *c = global(*c);
         }
     }
-    let duplicate_of =
-        duplicates.iter().enumerate().filter(|(_, &u)| u != NONE).map(|(i, &u)| (global(i as u32), global(u))).collect();
+    let duplicate_of = duplicates
+        .iter()
+        .enumerate()
+        .filter(|(_, &u)| u != NONE)
+        .map(|(i, &u)| (global(i as u32), global(u)))
+        .collect();
     Some(Half { mesh, duplicate_of })
 }
 
 /// Triangulates with two threads; gives the points back when the split does not give two proper
 /// halves (too few points, or a half with all points collinear): the caller then triangulates
 /// sequentially.
-pub fn triangulate_two_halves<P: Predicates>(points: Vec<Point>) -> Result<Triangulation, Vec<Point>> {
+pub fn triangulate_two_halves<P: Predicates>(
+    points: Vec<Point>,
+) -> Result<Triangulation, Vec<Point>> {
     let n = points.len();
     let lexicographic = |a: &u32, b: &u32| {
         let (p, q) = (points[*a as usize], points[*b as usize]);
@@ -92,9 +98,15 @@ pub fn triangulate_two_halves<P: Predicates>(points: Vec<Point>) -> Result<Trian
     mesh.corners.extend_from_slice(&r.mesh.corners);
     mesh.twins.extend(r.mesh.twins.iter().map(|&f| f + offset));
     mesh.points = points;
-    let mut merger = Merger::<P> { mesh, _p: Default::default() };
+    let mut merger = Merger::<P> {
+        mesh,
+        _p: Default::default(),
+    };
     merger.merge(offset / 3);
-    let mut triangulation = Triangulation { mesh: merger.mesh, duplicate_of };
+    let mut triangulation = Triangulation {
+        mesh: merger.mesh,
+        duplicate_of,
+    };
     triangulation.keep_first_copies();
     Ok(triangulation)
 }
@@ -147,7 +159,9 @@ fn ghost_edge(mesh: &Mesh, t: u32) -> Option<(u32, u32)> {
 
 /// The half-edge of ghost triangle `t` that starts at `from` and ends at `to` (either may be GHOST).
 fn half_edge(mesh: &Mesh, t: u32, from: u32, to: u32) -> u32 {
-    (3 * t..3 * t + 3).find(|&e| mesh.origin(e) == from && mesh.dest(e) == to).expect("half-edge in ghost")
+    (3 * t..3 * t + 3)
+        .find(|&e| mesh.origin(e) == from && mesh.dest(e) == to)
+        .expect("half-edge in ghost")
 }
 
 struct Merger<P: Predicates> {
@@ -184,18 +198,22 @@ impl<P: Predicates> Merger<P> {
         let left_hull = Hull::read(&self.mesh, 0..right_start);
         let right_hull = Hull::read(&self.mesh, right_start..total);
         let lexi_max = |h: &Hull| {
-            *h.succ.keys().max_by(|&&a, &&b| {
-                let (p, q) = (self.pt(a), self.pt(b));
-                p[0].total_cmp(&q[0]).then(p[1].total_cmp(&q[1]))
-            })
-            .unwrap()
+            *h.succ
+                .keys()
+                .max_by(|&&a, &&b| {
+                    let (p, q) = (self.pt(a), self.pt(b));
+                    p[0].total_cmp(&q[0]).then(p[1].total_cmp(&q[1]))
+                })
+                .unwrap()
         };
         let lexi_min = |h: &Hull| {
-            *h.succ.keys().min_by(|&&a, &&b| {
-                let (p, q) = (self.pt(a), self.pt(b));
-                p[0].total_cmp(&q[0]).then(p[1].total_cmp(&q[1]))
-            })
-            .unwrap()
+            *h.succ
+                .keys()
+                .min_by(|&&a, &&b| {
+                    let (p, q) = (self.pt(a), self.pt(b));
+                    p[0].total_cmp(&q[0]).then(p[1].total_cmp(&q[1]))
+                })
+                .unwrap()
         };
         let (l0, r0) = (lexi_max(&left_hull), lexi_min(&right_hull));
 
@@ -345,7 +363,12 @@ impl<P: Predicates> Merger<P> {
     fn legalize(&mut self, mut stack: Vec<u32>) {
         while let Some(e) = stack.pop() {
             let f = self.mesh.twin(e);
-            let (a, b, c, d) = (self.mesh.origin(e), self.mesh.dest(e), self.mesh.apex(e), self.mesh.apex(f));
+            let (a, b, c, d) = (
+                self.mesh.origin(e),
+                self.mesh.dest(e),
+                self.mesh.apex(e),
+                self.mesh.apex(f),
+            );
             if a == GHOST || b == GHOST || c == GHOST || d == GHOST {
                 continue; // hull and ghost edges stay: the hull is already convex
             }
@@ -367,7 +390,10 @@ mod tests {
     /// Valid, Delaunay, and with the triangle count Euler's formula gives for its hull.
     fn check(points: Vec<Point>) {
         let distinct = {
-            let mut v: Vec<(u64, u64)> = points.iter().map(|p| (p[0].to_bits(), p[1].to_bits())).collect();
+            let mut v: Vec<(u64, u64)> = points
+                .iter()
+                .map(|p| (p[0].to_bits(), p[1].to_bits()))
+                .collect();
             v.sort_unstable();
             v.dedup();
             v.len()
@@ -392,12 +418,22 @@ mod tests {
         }
         let real = m.triangle_count() as usize - ghosts;
         assert_eq!(real, 2 * distinct - 2 - ghosts);
-        assert_eq!(t.duplicate_of.iter().filter(|&&u| u != NONE).count(), t.duplicate_of.len() - distinct);
+        assert_eq!(
+            t.duplicate_of.iter().filter(|&&u| u != NONE).count(),
+            t.duplicate_of.len() - distinct
+        );
     }
 
     fn uniform(n: usize, seed: u64) -> Vec<Point> {
         let mut s = seed;
-        (0..n).map(|_| [splitmix64(&mut s) as f64 / u64::MAX as f64, splitmix64(&mut s) as f64 / u64::MAX as f64]).collect()
+        (0..n)
+            .map(|_| {
+                [
+                    splitmix64(&mut s) as f64 / u64::MAX as f64,
+                    splitmix64(&mut s) as f64 / u64::MAX as f64,
+                ]
+            })
+            .collect()
     }
 
     #[test]
@@ -424,8 +460,9 @@ mod tests {
     #[test]
     fn few_vertical_lines_and_a_circle() {
         let mut s = 9;
-        let mut pts: Vec<Point> =
-            (0..4000).map(|i| [(i % 4) as f64, (splitmix64(&mut s) % 100_000) as f64 * 1e-3]).collect();
+        let mut pts: Vec<Point> = (0..4000)
+            .map(|i| [(i % 4) as f64, (splitmix64(&mut s) % 100_000) as f64 * 1e-3])
+            .collect();
         check(pts.clone());
         pts.clear();
         for i in 0..2048 {
@@ -449,6 +486,11 @@ mod tests {
             }
         }
         check(pts);
-        check(uniform(2000, 77).iter().map(|p| [1e12 + p[0] * 1e-3, -1e12 + p[1] * 1e-3]).collect());
+        check(
+            uniform(2000, 77)
+                .iter()
+                .map(|p| [1e12 + p[0] * 1e-3, -1e12 + p[1] * 1e-3])
+                .collect(),
+        );
     }
 }

@@ -93,7 +93,13 @@ pub struct Inserter<P: Predicates> {
 
 impl<P: Predicates> Inserter<P> {
     pub fn new(mesh: Mesh) -> Self {
-        Inserter { mesh, last: 0, rng: 0x2545_F491_4F6C_DD1D, stack: Vec::with_capacity(64), _predicates: Default::default() }
+        Inserter {
+            mesh,
+            last: 0,
+            rng: 0x2545_F491_4F6C_DD1D,
+            stack: Vec::with_capacity(64),
+            _predicates: Default::default(),
+        }
     }
 
     #[inline(always)]
@@ -202,7 +208,11 @@ impl<P: Predicates> Inserter<P> {
                     return Location::OnVertex(v);
                 }
             }
-            let o = [P::orient2d(a, b, p), P::orient2d(b, c, p), P::orient2d(c, a, p)];
+            let o = [
+                P::orient2d(a, b, p),
+                P::orient2d(b, c, p),
+                P::orient2d(c, a, p),
+            ];
             if o.iter().all(|&x| x >= 0.0) {
                 return match o.iter().position(|&x| x == 0.0) {
                     Some(i) => Location::OnEdge(3 * t + i as u32),
@@ -275,7 +285,10 @@ impl<P: Predicates> Inserter<P> {
         while let Some(e) = self.stack.pop() {
             let f = self.mesh.twin(e);
             let ghost_edge = self.mesh.origin(e) == GHOST || self.mesh.dest(e) == GHOST;
-            if !self.mesh.is_segment(e) && (grows_hull || !ghost_edge) && self.conflicts(triangle_of(f), p) {
+            if !self.mesh.is_segment(e)
+                && (grows_hull || !ghost_edge)
+                && self.conflicts(triangle_of(f), p)
+            {
                 let [t1, t2] = self.mesh.flip(e);
                 self.stack.push(3 * t1);
                 self.stack.push(3 * t2);
@@ -358,11 +371,17 @@ mod tests {
         m.check_topology().unwrap();
         for t in m.real_triangles() {
             let [a, b, c] = m.triangle(t).map(|v| m.point(v));
-            assert!(Exact::orient2d(a, b, c) > 0.0, "triangle {t} is not counter-clockwise");
+            assert!(
+                Exact::orient2d(a, b, c) > 0.0,
+                "triangle {t} is not counter-clockwise"
+            );
             for e in 3 * t..3 * t + 3 {
                 let q = m.apex(m.twin(e));
                 if q != GHOST {
-                    assert!(Exact::incircle(a, b, c, m.point(q)) <= 0.0, "edge {e} is not Delaunay");
+                    assert!(
+                        Exact::incircle(a, b, c, m.point(q)) <= 0.0,
+                        "edge {e} is not Delaunay"
+                    );
                 }
             }
         }
@@ -381,13 +400,24 @@ mod tests {
     fn random_points_both_orders() {
         let mut s = 1;
         let pts: Vec<Point> = (0..2000)
-            .map(|_| [order::splitmix64(&mut s) as f64 / 1e19, order::splitmix64(&mut s) as f64 / 1e19])
+            .map(|_| {
+                [
+                    order::splitmix64(&mut s) as f64 / 1e19,
+                    order::splitmix64(&mut s) as f64 / 1e19,
+                ]
+            })
             .collect();
-        for ord in [order::hilbert_order(&pts), order::brio_order(&pts, 3), order::multiscale_order(&pts)] {
+        for ord in [
+            order::hilbert_order(&pts),
+            order::brio_order(&pts, 3),
+            order::multiscale_order(&pts),
+        ] {
             let t = triangulate::<Exact>(pts.clone(), &ord);
             check_delaunay(&t);
             // Euler: for n points with h on the hull, 2n - 2 - h triangles.
-            let hull = (0..t.mesh.triangle_count()).filter(|&t2| t.mesh.is_ghost(t2)).count();
+            let hull = (0..t.mesh.triangle_count())
+                .filter(|&t2| t.mesh.is_ghost(t2))
+                .count();
             assert_eq!(t.mesh.real_triangles().count(), 2 * 2000 - 2 - hull);
         }
     }

@@ -67,7 +67,11 @@ const HILBERT_TABLE: [[u16; 256]; 4] = {
             let (mut state, mut d, mut level) = (start, 0u32, 4);
             while level > 0 {
                 level -= 1;
-                let (digit, next) = hilbert_step(state, (xy as u32 >> (4 + level)) & 1, (xy as u32 >> level) & 1);
+                let (digit, next) = hilbert_step(
+                    state,
+                    (xy as u32 >> (4 + level)) & 1,
+                    (xy as u32 >> level) & 1,
+                );
                 d = (d << 2) | digit;
                 state = next;
             }
@@ -89,8 +93,16 @@ fn hilbert_keys(points: &[Point]) -> Vec<u32> {
         ymax = ymax.max(p[1]);
     }
     let cells = ((1u32 << HILBERT_BITS) - 1) as f64;
-    let scale_x = if xmax > xmin { cells / (xmax - xmin) } else { 0.0 };
-    let scale_y = if ymax > ymin { cells / (ymax - ymin) } else { 0.0 };
+    let scale_x = if xmax > xmin {
+        cells / (xmax - xmin)
+    } else {
+        0.0
+    };
+    let scale_y = if ymax > ymin {
+        cells / (ymax - ymin)
+    } else {
+        0.0
+    };
     points
         .iter()
         .map(|p| {
@@ -104,9 +116,15 @@ fn hilbert_keys(points: &[Point]) -> Vec<u32> {
 /// All point indices in Hilbert-curve order (among points with equal keys the earlier input
 /// point first).
 pub fn hilbert_order(points: &[Point]) -> Vec<u32> {
-    let keyed: Vec<u64> =
-        hilbert_keys(points).into_iter().enumerate().map(|(i, k)| (u64::from(k) << 32) | i as u64).collect();
-    radix_sort_by_high_half(keyed).into_iter().map(|k| k as u32).collect()
+    let keyed: Vec<u64> = hilbert_keys(points)
+        .into_iter()
+        .enumerate()
+        .map(|(i, k)| (u64::from(k) << 32) | i as u64)
+        .collect();
+    radix_sort_by_high_half(keyed)
+        .into_iter()
+        .map(|k| k as u32)
+        .collect()
 }
 
 /// Sorts words whose low halves are already increasing by their high halves, keeping the
@@ -168,7 +186,8 @@ fn rounds_in_hilbert_order(points: &[Point], seed: u64, growth_bits: u32) -> Vec
     // the number of trailing zero bits of a uniform random word, in steps of `growth_bits`.
     let round_of: Vec<u8> = (0..points.len())
         .map(|_| {
-            let from_last = (splitmix64(&mut state).trailing_zeros() / growth_bits).min(ROUNDS as u32 - 1);
+            let from_last =
+                (splitmix64(&mut state).trailing_zeros() / growth_bits).min(ROUNDS as u32 - 1);
             (ROUNDS as u32 - 1 - from_last) as u8
         })
         .collect();
@@ -227,8 +246,9 @@ mod tests {
         for n in [0usize, 5, 1000, 5000, 100_000] {
             // Few distinct high halves (ties) and a full range, with increasing low halves.
             for spread in [7u64, u32::MAX as u64] {
-                let keys: Vec<u64> =
-                    (0..n as u64).map(|i| ((splitmix64(&mut s) % (spread + 1)) << 32) | i).collect();
+                let keys: Vec<u64> = (0..n as u64)
+                    .map(|i| ((splitmix64(&mut s) % (spread + 1)) << 32) | i)
+                    .collect();
                 let mut expected = keys.clone();
                 expected.sort_unstable();
                 assert_eq!(radix_sort_by_high_half(keys), expected);
@@ -240,9 +260,18 @@ mod tests {
     fn orders_are_permutations() {
         let mut s = 7;
         let pts: Vec<Point> = (0..1000)
-            .map(|_| [splitmix64(&mut s) as f64 / u64::MAX as f64, splitmix64(&mut s) as f64 / u64::MAX as f64])
+            .map(|_| {
+                [
+                    splitmix64(&mut s) as f64 / u64::MAX as f64,
+                    splitmix64(&mut s) as f64 / u64::MAX as f64,
+                ]
+            })
             .collect();
-        for order in [hilbert_order(&pts), brio_order(&pts, 42), multiscale_order(&pts)] {
+        for order in [
+            hilbert_order(&pts),
+            brio_order(&pts, 42),
+            multiscale_order(&pts),
+        ] {
             let mut seen = order.clone();
             seen.sort_unstable();
             assert_eq!(seen, (0..1000).collect::<Vec<u32>>());

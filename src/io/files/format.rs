@@ -52,9 +52,17 @@ pub fn push_g17(out: &mut Vec<u8>, value: f64) {
     }
     // Rust's fixed-precision scientific formatting is correctly rounded (ties to even on the
     // exact binary value), as glibc's printf is; `%g` takes its exponent after this rounding.
-    let mut text = StackText { bytes: [0; 40], len: 0 };
-    write!(text, "{:.*e}", (SIGNIFICANT_DIGITS - 1) as usize, value.abs())
-        .expect("an f64 in scientific form fits in 40 bytes");
+    let mut text = StackText {
+        bytes: [0; 40],
+        len: 0,
+    };
+    write!(
+        text,
+        "{:.*e}",
+        (SIGNIFICANT_DIGITS - 1) as usize,
+        value.abs()
+    )
+    .expect("an f64 in scientific form fits in 40 bytes");
     let text = &text.bytes[..text.len];
     let e_at = text
         .iter()
@@ -143,7 +151,8 @@ fn unsigned_digits(mut value: u64) -> ([u8; 20], usize) {
     }
     if small >= 10 {
         start -= 2;
-        digits[start..start + 2].copy_from_slice(&PAIRS[2 * small as usize..2 * small as usize + 2]);
+        digits[start..start + 2]
+            .copy_from_slice(&PAIRS[2 * small as usize..2 * small as usize + 2]);
     } else {
         start -= 1;
         digits[start] = b'0' + small as u8;
@@ -186,7 +195,14 @@ mod tests {
     fn c_g17(value: f64) -> String {
         let mut buffer = [0u8; 64];
         // SAFETY: the buffer is 64 bytes, its size is passed, and the format takes one double.
-        let n = unsafe { libc::snprintf(buffer.as_mut_ptr().cast(), buffer.len(), c"%.17g".as_ptr(), value) };
+        let n = unsafe {
+            libc::snprintf(
+                buffer.as_mut_ptr().cast(),
+                buffer.len(),
+                c"%.17g".as_ptr(),
+                value,
+            )
+        };
         String::from_utf8(buffer[..n as usize].to_vec()).unwrap()
     }
 
@@ -276,7 +292,10 @@ mod tests {
         push_int_width(&mut out, -1, 4);
         push_int_width(&mut out, 123456, 4);
         push_int(&mut out, i64::MIN);
-        assert_eq!(String::from_utf8(out).unwrap(), "   7  -1123456-9223372036854775808");
+        assert_eq!(
+            String::from_utf8(out).unwrap(),
+            "   7  -1123456-9223372036854775808"
+        );
         for value in [
             0i64,
             5,

@@ -14,10 +14,11 @@ pub mod write;
 pub use format::{g17, push_g17};
 pub use naming::{next_iteration_name, split_input_name, InputName};
 pub use read::{
-    check_vertex_indices, read_area, read_edge, read_ele, read_neigh, read_node, read_off, read_poly,
-    read_voronoi_edge, AreaFile, EdgeFile, EleFile, FileError, NeighFile, NodeFile, OffFile, PolyFile, VoronoiEdgeFile,
+    check_vertex_indices, read_area, read_edge, read_ele, read_neigh, read_node, read_off,
+    read_poly, read_voronoi_edge, AreaFile, EdgeFile, EleFile, FileError, NeighFile, NodeFile,
+    OffFile, PolyFile, VoronoiEdgeFile,
 };
 pub use write::{
-    write_area, write_edge, write_ele, write_neigh, write_node, write_off, write_poly, write_voronoi_edge, EleData,
-    NodeData, PolyData, PolyVertices,
+    write_area, write_edge, write_ele, write_neigh, write_node, write_off, write_poly,
+    write_voronoi_edge, EleData, NodeData, PolyData, PolyVertices,
 };

@@ -12,7 +12,12 @@ pub struct InputName {
 /// Splits `name` into its base and the switches its extension implies (`.node` implies none; any
 /// other name is a base name as it is).
 pub fn split_input_name(name: &str) -> InputName {
-    for (extension, implied_switches) in [(".node", ""), (".poly", "p"), (".ele", "r"), (".area", "ra")] {
+    for (extension, implied_switches) in [
+        (".node", ""),
+        (".poly", "p"),
+        (".ele", "r"),
+        (".area", "ra"),
+    ] {
         if let Some(base) = name.strip_suffix(extension) {
             return InputName {
                 base: base.to_string(),
@@ -33,7 +38,9 @@ pub fn next_iteration_name(base: &str) -> String {
         let number = &base[dot + 1..];
         if !number.is_empty() && number.bytes().all(|b| b.is_ascii_digit()) {
             // Leading zeros are dropped (`mesh.01` → `mesh.2`); an absurdly long number saturates.
-            let next = number.parse::<u64>().map_or(u64::MAX, |n| n.saturating_add(1));
+            let next = number
+                .parse::<u64>()
+                .map_or(u64::MAX, |n| n.saturating_add(1));
             return format!("{}.{next}", &base[..dot]);
         }
     }

@@ -158,7 +158,10 @@ struct Record<'a> {
 }
 
 fn starts_like_a_number(word: &str) -> bool {
-    matches!(word.as_bytes().first(), Some(b'0'..=b'9' | b'.' | b'+' | b'-'))
+    matches!(
+        word.as_bytes().first(),
+        Some(b'0'..=b'9' | b'.' | b'+' | b'-')
+    )
 }
 
 impl<'a> Lines<'a> {
@@ -302,12 +305,16 @@ impl<'a> Record<'a> {
     /// The next word that starts like a number.
     fn next_word(&mut self) -> Option<&'a str> {
         loop {
-            let trimmed = self.rest.trim_start_matches(|c: char| c.is_ascii_whitespace());
+            let trimmed = self
+                .rest
+                .trim_start_matches(|c: char| c.is_ascii_whitespace());
             if trimmed.is_empty() {
                 self.rest = trimmed;
                 return None;
             }
-            let end = trimmed.find(|c: char| c.is_ascii_whitespace()).unwrap_or(trimmed.len());
+            let end = trimmed
+                .find(|c: char| c.is_ascii_whitespace())
+                .unwrap_or(trimmed.len());
             let word = &trimmed[..end];
             self.rest = &trimmed[end..];
             if starts_like_a_number(word) {
@@ -318,7 +325,9 @@ impl<'a> Record<'a> {
 
     /// The next integer field, `None` if the line has no more fields.
     fn optional_integer(&mut self, what: fmt::Arguments<'_>) -> Result<Option<i64>, FileError> {
-        let Some(word) = self.next_word() else { return Ok(None) };
+        let Some(word) = self.next_word() else {
+            return Ok(None);
+        };
         match parse_c_integer(word) {
             Some(Ok(value)) => Ok(Some(value)),
             Some(Err(())) => Err(self.error(format!("{what} `{word}` is out of range"))),
@@ -362,7 +371,9 @@ impl<'a> Record<'a> {
 
     /// The next real field, `None` if the line has no more fields; it must be finite.
     fn optional_real(&mut self, what: fmt::Arguments<'_>) -> Result<Option<f64>, FileError> {
-        let Some(word) = self.next_word() else { return Ok(None) };
+        let Some(word) = self.next_word() else {
+            return Ok(None);
+        };
         match parse_c_real(word) {
             Some(value) if value.is_finite() => Ok(Some(value)),
             Some(_) => Err(self.error(format!("{what} `{word}` is not a finite number"))),
@@ -388,7 +399,9 @@ fn reserve(count: usize, width: usize) -> usize {
 /// Reads the vertex header (already taken from `lines` as `header`) and the vertices.
 fn read_vertices(lines: &mut Lines<'_>, mut header: Record<'_>) -> Result<NodeFile, FileError> {
     let count = header.count(format_args!("the number of vertices"))?;
-    let dimension = header.optional_integer(format_args!("the dimension"))?.unwrap_or(2);
+    let dimension = header
+        .optional_integer(format_args!("the dimension"))?
+        .unwrap_or(2);
     if dimension != 2 {
         return Err(header.error(format!(
             "the dimension is {dimension}, but triangle-rs only works with two-dimensional meshes"
@@ -418,7 +431,8 @@ fn read_vertices(lines: &mut Lines<'_>, mut header: Record<'_>) -> Result<NodeFi
         let y = record.real(format_args!("the y coordinate of vertex {number}"))?;
         node.points.extend_from_slice(&[x, y]);
         for a in 0..attribute_count {
-            let value = record.optional_real(format_args!("attribute {} of vertex {number}", a + 1))?;
+            let value =
+                record.optional_real(format_args!("attribute {} of vertex {number}", a + 1))?;
             node.attributes.push(value.unwrap_or(0.0));
         }
         if let Some(markers) = node.markers.as_mut() {
@@ -448,7 +462,9 @@ pub fn read_ele(text: &str, file: &str) -> Result<EleFile, FileError> {
         .optional_count(format_args!("the number of nodes per triangle"))?
         .unwrap_or(3);
     if corners < 3 {
-        return Err(header.error(format!("triangles must have at least 3 nodes, not {corners}")));
+        return Err(header.error(format!(
+            "triangles must have at least 3 nodes, not {corners}"
+        )));
     }
     let attribute_count = header
         .optional_count(format_args!("the number of triangle attributes"))?
@@ -472,10 +488,12 @@ pub fn read_ele(text: &str, file: &str) -> Result<EleFile, FileError> {
             ele.triangles.push(vertex);
         }
         for a in 0..attribute_count {
-            let value = record.optional_real(format_args!("attribute {} of triangle {number}", a + 1))?;
+            let value =
+                record.optional_real(format_args!("attribute {} of triangle {number}", a + 1))?;
             ele.attributes.push(value.unwrap_or(0.0));
         }
-        ele.lines.push(u32::try_from(record.line).unwrap_or(u32::MAX));
+        ele.lines
+            .push(u32::try_from(record.line).unwrap_or(u32::MAX));
     }
     Ok(ele)
 }
@@ -487,7 +505,8 @@ pub fn read_poly(text: &str, file: &str, read_regions: bool) -> Result<PolyFile,
     let header = lines.expect_record(format_args!("the header (number of vertices)"))?;
     let vertices = read_vertices(&mut lines, header)?;
 
-    let mut header = lines.expect_record(format_args!("the segment header (number of segments)"))?;
+    let mut header =
+        lines.expect_record(format_args!("the segment header (number of segments)"))?;
     let segment_count = header.count(format_args!("the number of segments"))?;
     let has_markers = header
         .optional_count(format_args!("the number of segment markers"))?
@@ -501,7 +520,8 @@ pub fn read_poly(text: &str, file: &str, read_regions: bool) -> Result<PolyFile,
         ..PolyFile::default()
     };
     for k in 0..segment_count {
-        let mut record = lines.expect_record(format_args!("segment {} of {segment_count}", k + 1))?;
+        let mut record =
+            lines.expect_record(format_args!("segment {} of {segment_count}", k + 1))?;
         let number = record.integer(format_args!("the segment number"))?;
         let first = record.int32(format_args!("the first endpoint of segment {number}"))?;
         let second = record.int32(format_args!("the second endpoint of segment {number}"))?;
@@ -513,7 +533,8 @@ pub fn read_poly(text: &str, file: &str, read_regions: bool) -> Result<PolyFile,
                     .unwrap_or(0),
             );
         }
-        poly.segment_lines.push(u32::try_from(record.line).unwrap_or(u32::MAX));
+        poly.segment_lines
+            .push(u32::try_from(record.line).unwrap_or(u32::MAX));
     }
 
     let mut header = lines.expect_record(format_args!("the hole header (number of holes)"))?;
@@ -532,12 +553,16 @@ pub fn read_poly(text: &str, file: &str, read_regions: bool) -> Result<PolyFile,
             let region_count = header.count(format_args!("the number of regions"))?;
             poly.regions.reserve(reserve(region_count, 4));
             for k in 0..region_count {
-                let mut record = lines.expect_record(format_args!("region {} of {region_count}", k + 1))?;
+                let mut record =
+                    lines.expect_record(format_args!("region {} of {region_count}", k + 1))?;
                 let number = record.integer(format_args!("the region number"))?;
                 let x = record.real(format_args!("the x coordinate of region {number}"))?;
                 let y = record.real(format_args!("the y coordinate of region {number}"))?;
-                let attribute = record.real(format_args!("the attribute (or area constraint) of region {number}"))?;
-                let area = record.optional_real(format_args!("the area constraint of region {number}"))?;
+                let attribute = record.real(format_args!(
+                    "the attribute (or area constraint) of region {number}"
+                ))?;
+                let area =
+                    record.optional_real(format_args!("the area constraint of region {number}"))?;
                 poly.regions
                     .extend_from_slice(&[x, y, attribute, area.unwrap_or(attribute)]);
             }
@@ -556,7 +581,8 @@ pub fn read_area(text: &str, file: &str) -> Result<AreaFile, FileError> {
         areas: Vec::with_capacity(reserve(count, 1)),
     };
     for k in 0..count {
-        let mut record = lines.expect_record(format_args!("the area of triangle {} of {count}", k + 1))?;
+        let mut record =
+            lines.expect_record(format_args!("the area of triangle {} of {count}", k + 1))?;
         let number = record.integer(format_args!("the triangle number"))?;
         if k == 0 {
             area.first_number = Some(number);
@@ -665,10 +691,13 @@ pub fn read_neigh(text: &str, file: &str) -> Result<NeighFile, FileError> {
 pub fn read_off(text: &str, file: &str) -> Result<OffFile, FileError> {
     let mut lines = Lines::new(file, text);
     // The `OFF` keyword has no number: the reader skips it like a comment.
-    let mut header = lines.expect_record(format_args!("the header (vertex, face and edge counts)"))?;
+    let mut header =
+        lines.expect_record(format_args!("the header (vertex, face and edge counts)"))?;
     let vertex_count = header.count(format_args!("the number of vertices"))?;
     let face_count = header.count(format_args!("the number of faces"))?;
-    let edge_count = header.optional_count(format_args!("the number of edges"))?.unwrap_or(0);
+    let edge_count = header
+        .optional_count(format_args!("the number of edges"))?
+        .unwrap_or(0);
     let mut off = OffFile {
         points: Vec::with_capacity(reserve(vertex_count, 3)),
         triangles: Vec::with_capacity(reserve(face_count, 3)),
@@ -685,12 +714,16 @@ pub fn read_off(text: &str, file: &str) -> Result<OffFile, FileError> {
         let mut record = lines.expect_record(format_args!("face {} of {face_count}", k + 1))?;
         let sides = record.integer(format_args!("the number of face vertices"))?;
         if sides != 3 {
-            return Err(record.error(format!("face {k} has {sides} vertices; only triangles are read")));
+            return Err(record.error(format!(
+                "face {k} has {sides} vertices; only triangles are read"
+            )));
         }
         for c in 0..3 {
             let vertex = record.int32(format_args!("vertex {} of face {k}", c + 1))?;
             if vertex < 0 || vertex as usize >= vertex_count {
-                return Err(record.error(format!("face {k} refers to vertex {vertex}, which does not exist")));
+                return Err(record.error(format!(
+                    "face {k} refers to vertex {vertex}, which does not exist"
+                )));
             }
             off.triangles.push(vertex);
         }
@@ -796,7 +829,10 @@ mod tests {
         assert!(e.message.contains("negative"), "{e}");
 
         let e = read_node("3 2 0 0\n1 0 0\n2 - 1\n3 0 1\n", "dash.node").unwrap_err();
-        assert!(e.message.contains("not a number") && e.line == Some(3), "{e}");
+        assert!(
+            e.message.contains("not a number") && e.line == Some(3),
+            "{e}"
+        );
 
         let e = read_node("3 2 0 0\n1 0 0\n2 1e999 1\n3 0 1\n", "inf.node").unwrap_err();
         assert!(e.message.contains("not a finite number"), "{e}");
@@ -813,11 +849,15 @@ mod tests {
         assert_eq!(ele.triangles, vec![1, 2, 3, 3, 4, 1]);
         assert_eq!(ele.attributes, vec![0.5, 0.0]);
         assert_eq!(ele.lines, vec![2, 3]);
-        assert!(check_vertex_indices("x.ele", "triangle", &ele.triangles, 3, &ele.lines, 1, 4).is_ok());
-        let e = check_vertex_indices("x.ele", "triangle", &ele.triangles, 3, &ele.lines, 1, 3).unwrap_err();
+        assert!(
+            check_vertex_indices("x.ele", "triangle", &ele.triangles, 3, &ele.lines, 1, 4).is_ok()
+        );
+        let e = check_vertex_indices("x.ele", "triangle", &ele.triangles, 3, &ele.lines, 1, 3)
+            .unwrap_err();
         assert_eq!(e.line, Some(3));
         assert!(e.message.contains("triangle 2 refers to vertex 4"), "{e}");
-        let e = check_vertex_indices("x.ele", "triangle", &ele.triangles, 3, &ele.lines, 0, 4).unwrap_err();
+        let e = check_vertex_indices("x.ele", "triangle", &ele.triangles, 3, &ele.lines, 0, 4)
+            .unwrap_err();
         assert!(e.message.contains("vertex 4"), "{e}");
 
         let e = read_ele("1 3 0\n1 1 2\n", "m.ele").unwrap_err();
@@ -869,14 +909,22 @@ mod tests {
         assert_eq!(empty.segment_markers, None);
 
         let e = read_poly("0 2 0 0\n1 0\n1 1\n0\n", "s.poly", false).unwrap_err();
-        assert!(e.message.contains("second endpoint of segment 1 is missing"), "{e}");
+        assert!(
+            e.message
+                .contains("second endpoint of segment 1 is missing"),
+            "{e}"
+        );
         let e = read_poly("0 2 0 0\n1 0\n1 1 2\n", "h.poly", false).unwrap_err();
         assert!(
             e.message.contains("unexpected end of file") && e.message.contains("hole"),
             "{e}"
         );
         let e = read_poly("0 2 0 0\n0 0\n0\n1\n1 0.5 0.5\n", "r.poly", true).unwrap_err();
-        assert!(e.message.contains("attribute (or area constraint) of region 1"), "{e}");
+        assert!(
+            e.message
+                .contains("attribute (or area constraint) of region 1"),
+            "{e}"
+        );
     }
 
     #[test]
