@@ -38,11 +38,7 @@ impl Input<'_> {
         self.points.len() / 2
     }
     pub fn triangle_count(&self) -> usize {
-        if self.corners == 0 {
-            0
-        } else {
-            self.triangles.len() / self.corners
-        }
+        self.triangles.len().checked_div(self.corners).unwrap_or(0)
     }
     pub fn segment_count(&self) -> usize {
         self.segments.len() / 2

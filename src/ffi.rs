@@ -12,7 +12,7 @@ use std::os::raw::{c_char, c_int, c_void};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::atomic::{AtomicI32, AtomicPtr, Ordering};
 
-use crate::data::Hooks;
+use crate::data::{Hooks, UnsuitableFn};
 use crate::error::Error;
 use crate::io::triangulateio::{input_from_raw, write_output, TriangulateIO};
 use crate::options::{Options, SwitchSource};
@@ -54,7 +54,7 @@ unsafe fn run(
     input: *mut TriangulateIO,
     output: *mut TriangulateIO,
     vorout: *mut TriangulateIO,
-    callback: Option<&(dyn Fn(f64, f64, f64, f64, f64, f64, f64) -> bool + Sync)>,
+    callback: Option<&UnsuitableFn<'_>>,
     cancel: *const c_int,
 ) -> Result<(), Error> {
     if switches.is_null() {
@@ -174,12 +174,11 @@ pub unsafe extern "C" fn triangulate(
     let test = move |ox, oy, dx, dy, ax, ay, area| {
         callback.is_some_and(|f| f(ox, oy, dx, dy, ax, ay, area) != 0)
     };
-    let callback_ref: Option<&(dyn Fn(f64, f64, f64, f64, f64, f64, f64) -> bool + Sync)> =
-        if callback.is_some() {
-            Some(&test)
-        } else {
-            None
-        };
+    let callback_ref: Option<&UnsuitableFn<'_>> = if callback.is_some() {
+        Some(&test)
+    } else {
+        None
+    };
     // SAFETY: the caller's contract is this function's.
     guarded(|| unsafe { run(switches, r#in, out, vorout, callback_ref, std::ptr::null()) })
 }
@@ -225,12 +224,11 @@ pub unsafe extern "C" fn triangulate_reentrant(
         let data = data;
         unsuitable.is_some_and(|f| f(ox, oy, dx, dy, ax, ay, area, data.0) != 0)
     };
-    let callback_ref: Option<&(dyn Fn(f64, f64, f64, f64, f64, f64, f64) -> bool + Sync)> =
-        if unsuitable.is_some() {
-            Some(&test)
-        } else {
-            None
-        };
+    let callback_ref: Option<&UnsuitableFn<'_>> = if unsuitable.is_some() {
+        Some(&test)
+    } else {
+        None
+    };
     // SAFETY: the caller's contract is this function's.
     guarded(|| unsafe { run(switches, r#in, out, vorout, callback_ref, cancel) })
 }

@@ -176,7 +176,7 @@ impl Options {
             o.weighted = 0;
         }
         if let Some(area) = o.max_area {
-            if !(area > 0.0) {
+            if area.is_nan() || area <= 0.0 {
                 return Err(Error::NonPositiveMaxArea);
             }
         }

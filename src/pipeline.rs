@@ -6,7 +6,7 @@ use crate::algorithms::delaunay::{self, merge, order, Inserter, Triangulation};
 use crate::algorithms::domain::{carve, Domain};
 use crate::algorithms::reconstruct::reconstruct;
 use crate::algorithms::refine::{Quality, Refiner, VertexKind};
-use crate::algorithms::voronoi::voronoi_diagram;
+use crate::algorithms::voronoi::{voronoi_diagram, DualOf};
 use crate::assemble::FinishedMesh;
 use crate::data::{Hooks, Input, Output, VoronoiOutput};
 use crate::error::Error;
@@ -384,7 +384,15 @@ fn write_outputs(
         diagram: None,
     };
     if options.voronoi {
-        voronoi.diagram = Some(voronoi_diagram(&finished, &numbering, base));
+        let dual = DualOf {
+            triangles: &numbering.triangles,
+            triangle_index: &numbering.triangle,
+            edges: &numbering.edges,
+            point_attributes: finished.point_attributes,
+            point_attribute_count: finished.point_attribute_count,
+            base,
+        };
+        voronoi.diagram = Some(voronoi_diagram(finished.mesh, &dual));
     }
     (output, voronoi)
 }

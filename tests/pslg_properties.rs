@@ -542,3 +542,13 @@ fn segments_meeting_within_rounding_share_their_vertices() {
         }
     }
 }
+
+/// A segment that overlaps a shorter one goes on through the shorter one's end, even where a
+/// rounded crossing point makes that end lie an ulp off the rest of its course.
+#[test]
+fn an_overlapping_segment_continues_through_the_end_of_the_shorter_one() {
+    let pslg = pslg::overlap_past_a_rounded_crossing();
+    for switches in ["pczQ", "pczqQ", "pcszQ"] {
+        check(&pslg, switches);
+    }
+}

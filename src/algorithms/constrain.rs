@@ -377,8 +377,14 @@ impl<P: Predicates> Constrainer<P> {
                     return Walk::Along(e);
                 }
                 if y != GHOST && ox > 0.0 {
-                    let oy = P::orient2d(pa, self.pt(y), pb);
-                    if oy < 0.0 {
+                    let py = self.pt(y);
+                    let oy = P::orient2d(pa, py, pb);
+                    // A `y` within rounding of the segment (an ulp to the right of it) is not the
+                    // left side of a wedge to cross: the next turn takes it as `x` and walks
+                    // along the edge to it.
+                    let y_on_segment =
+                        on_line(oy, pa, pb) && along(pa, py, pb) && before(pa, py, pb);
+                    if oy < 0.0 && !y_on_segment {
                         right = x;
                         left = y;
                         break;
@@ -416,8 +422,9 @@ impl<P: Predicates> Constrainer<P> {
             let (u, v, w, z) = (mesh.origin(h), mesh.dest(h), mesh.apex(h), mesh.apex(f));
             let (pu, pv, pw, pz) = (mesh.point(u), mesh.point(v), mesh.point(w), mesh.point(z));
             // The flip needs the quadrilateral u, z, v, w convex: z–w crosses u–v.
-            if !on_edge(pu, pv, pw)
-                || !(P::orient2d(pz, pw, pu) > 0.0 && P::orient2d(pz, pw, pv) < 0.0)
+            if !(on_edge(pu, pv, pw)
+                && P::orient2d(pz, pw, pu) > 0.0
+                && P::orient2d(pz, pw, pv) < 0.0)
             {
                 continue;
             }
@@ -897,7 +904,7 @@ mod tests {
             for k in 0..10 {
                 let a = (splitmix64(&mut s) % n as u64) as u32;
                 let b = (splitmix64(&mut s) % n as u64) as u32;
-                let id = cdt.new_segment_id(k as i32 % 3, a, b);
+                let id = cdt.new_segment_id(k % 3, a, b);
                 let m = &cdt.inserter.mesh;
                 let segments_before: Vec<(u32, u32)> = (0..m.corners.len() as u32)
                     .filter(|&e| m.is_segment(e))
@@ -928,7 +935,7 @@ mod tests {
                 assert_constrained_delaunay(m, seed);
                 for e in 0..m.corners.len() as u32 {
                     if m.origin(e) != GHOST && m.dest(e) != GHOST {
-                        assert_eq!(m.vertex_edge[m.origin(e) as usize] == NONE, false);
+                        assert_ne!(m.vertex_edge[m.origin(e) as usize], NONE);
                     }
                 }
             }

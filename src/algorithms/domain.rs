@@ -55,11 +55,7 @@ impl Domain {
                 }
             })
             .collect();
-        let attribute_count = if input_triangles == 0 {
-            0
-        } else {
-            attributes.len() / input_triangles
-        };
+        let attribute_count = attributes.len().checked_div(input_triangles).unwrap_or(0);
         let mut all_attributes = vec![0.0; FIRST_REGION as usize * attribute_count];
         all_attributes.extend_from_slice(attributes);
         let mut max_area = vec![-1.0; FIRST_REGION as usize];

@@ -87,7 +87,7 @@ mod tests {
                 if (i, j) == (1, 1) {
                     continue;
                 }
-                let v = |a: i32, b: i32| (b * 4 + a) as i32;
+                let v = |a: i32, b: i32| b * 4 + a;
                 tris.extend_from_slice(&[v(i, j), v(i + 1, j), v(i + 1, j + 1)]);
                 tris.extend_from_slice(&[v(i, j), v(i + 1, j + 1), v(i, j + 1)]);
             }

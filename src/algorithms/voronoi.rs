@@ -5,22 +5,32 @@
 //! attributes are interpolated linearly at the circumcentres (extrapolated when the centre lies
 //! outside its triangle).
 
-use crate::assemble::{FinishedMesh, Numbering};
 use crate::data::VoronoiDiagram;
 use crate::geometry::circumcenter;
-use crate::mesh::{triangle_of, NONE};
+use crate::mesh::{triangle_of, Mesh, NONE};
 
-pub fn voronoi_diagram(
-    finished: &FinishedMesh<'_>,
-    numbering: &Numbering,
-    base: i32,
-) -> VoronoiDiagram {
-    let mesh = finished.mesh;
-    let k = finished.point_attribute_count;
-    let attrs = |v: u32| &finished.point_attributes[v as usize * k..v as usize * k + k];
-    let mut points = Vec::with_capacity(2 * numbering.triangles.len());
-    let mut point_attributes = Vec::with_capacity(k * numbering.triangles.len());
-    for &t in &numbering.triangles {
+/// Which triangles and edges of a mesh the diagram is the dual of, in the output's order (the
+/// numbering is the output assembly's: the diagram's vertices are numbered as the triangles).
+pub struct DualOf<'a> {
+    /// Output triangles in order (triangle slots).
+    pub triangles: &'a [u32],
+    /// Per triangle slot: its output index (0-based), or [`NONE`] when it is not output.
+    pub triangle_index: &'a [u32],
+    /// Output edges in order (one half-edge each, of an output triangle).
+    pub edges: &'a [u32],
+    /// `point_attribute_count` values per vertex, interpolated at the circumcentres.
+    pub point_attributes: &'a [f64],
+    pub point_attribute_count: usize,
+    /// The numbering base of the output (0 or 1).
+    pub base: i32,
+}
+
+pub fn voronoi_diagram(mesh: &Mesh, dual: &DualOf<'_>) -> VoronoiDiagram {
+    let (k, base) = (dual.point_attribute_count, dual.base);
+    let attrs = |v: u32| &dual.point_attributes[v as usize * k..v as usize * k + k];
+    let mut points = Vec::with_capacity(2 * dual.triangles.len());
+    let mut point_attributes = Vec::with_capacity(k * dual.triangles.len());
+    for &t in dual.triangles {
         let [o, d, a] = mesh.triangle(t);
         let (centre, xi, eta) = circumcenter(mesh.point(o), mesh.point(d), mesh.point(a));
         points.extend_from_slice(&centre);
@@ -28,11 +38,11 @@ pub fn voronoi_diagram(
         point_attributes
             .extend((0..k).map(|i| ao[i] + xi * (ad[i] - ao[i]) + eta * (aa[i] - ao[i])));
     }
-    let mut edges = Vec::with_capacity(2 * numbering.edges.len());
-    let mut norms = Vec::with_capacity(2 * numbering.edges.len());
-    for &e in &numbering.edges {
-        let here = numbering.triangle[triangle_of(e) as usize] as i32 + base;
-        let there = numbering.triangle[triangle_of(mesh.twin(e)) as usize];
+    let mut edges = Vec::with_capacity(2 * dual.edges.len());
+    let mut norms = Vec::with_capacity(2 * dual.edges.len());
+    for &e in dual.edges {
+        let here = dual.triangle_index[triangle_of(e) as usize] as i32 + base;
+        let there = dual.triangle_index[triangle_of(mesh.twin(e)) as usize];
         if there != NONE {
             edges.extend_from_slice(&[here, there as i32 + base]);
             norms.extend_from_slice(&[0.0, 0.0]);

@@ -661,3 +661,39 @@ pub fn lattice_with_overlaps() -> Pslg {
         ..Pslg::new("lattice with overlapping segments".into(), input)
     }
 }
+
+/// Found by the fuzz driver: two overlapping segments from one vertex, the longer one going on
+/// past the shorter one's end (on the line y = x - 3), and a third segment crossing both where
+/// the crossing point rounds an ulp off that line. The longer segment's piece from the crossing
+/// point must pass through the shorter one's end, not by it.
+pub fn overlap_past_a_rounded_crossing() -> Pslg {
+    let points: Vec<Point> = [
+        [-6, 1],
+        [-4, -8],
+        [1, -5],
+        [4, -1],
+        [-2, -5],
+        [-6, -4],
+        [-4, -6],
+        [-3, -6],
+        [7, 2],
+        [-3, 5],
+        [-4, -4],
+        [-2, -6],
+        [6, -2],
+        [-2, -2],
+        [7, 4],
+    ]
+    .iter()
+    .map(|p| [p[0] as f64, p[1] as f64])
+    .collect();
+    let input = MeshInput {
+        segments: vec![[9, 5], [0, 3], [14, 4], [14, 7], [2, 8]],
+        ..MeshInput::from_points(points)
+    };
+    Pslg {
+        convex: true,
+        ours_only: true,
+        ..Pslg::new("overlap past a rounded crossing".into(), input)
+    }
+}

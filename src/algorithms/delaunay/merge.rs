@@ -481,7 +481,7 @@ mod tests {
             let (cx, cy) = ((c % 5) as f64 * 10.0, (c / 5) as f64 * 10.0);
             for _ in 0..200 {
                 let r = splitmix64(&mut s) as f64 / u64::MAX as f64 * 1e-3;
-                let a = splitmix64(&mut s) as f64 / u64::MAX as f64 * 6.283;
+                let a = splitmix64(&mut s) as f64 / u64::MAX as f64 * std::f64::consts::TAU;
                 pts.push([cx + r * a.cos(), cy + r * a.sin()]);
             }
         }

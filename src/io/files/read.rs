@@ -388,9 +388,10 @@ impl<'a> Record<'a> {
 }
 
 /// Capacity to reserve for `count` items announced by a header: bounded, so that a corrupt header
-/// cannot make the reader allocate gigabytes before it finds out the file is short.
+/// cannot make the reader allocate gigabytes before it finds out the file is short. Both the
+/// count and the width (corners, attributes per item) come from the header: bound the product.
 fn reserve(count: usize, width: usize) -> usize {
-    count.min(1 << 20) * width
+    count.saturating_mul(width).min(1 << 21)
 }
 
 // ------------------------------------------------------------------------------------------------

@@ -1,0 +1,77 @@
+//! The fuzz targets' checks (`fuzz/cases.rs`) on stable Rust: seeded random byte strings through
+//! each case for a bounded number of cases (and at most `FUZZ_SECONDS`, default 20 per target,
+//! so that the suite stays short; the cases run in a fixed order, so a failure names its seed and
+//! reproduces). A long campaign runs the same cases under libFuzzer: see fuzz/README.md.
+
+#[path = "../fuzz/cases.rs"]
+mod cases;
+mod common;
+
+use std::time::{Duration, Instant};
+
+use common::rng::SplitMix64;
+use common::timing::number_from_env;
+
+/// Runs `case` on random byte strings of up to `max_len` bytes: at most `count` of them, for at
+/// most the time budget. Returns how many ran.
+fn drive(name: &str, seed: u64, count: usize, max_len: usize, case: impl Fn(&[u8])) -> usize {
+    let budget = Duration::from_secs(number_from_env("FUZZ_SECONDS", 20) as u64);
+    let start = Instant::now();
+    let mut rng = SplitMix64::new(seed);
+    let mut ran = 0;
+    while ran < count && start.elapsed() < budget {
+        let len = rng.below(max_len + 1);
+        let data: Vec<u8> = (0..len).map(|_| rng.next_u64() as u8).collect();
+        let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| case(&data)));
+        if outcome.is_err() {
+            panic!("{name}: case {ran} (seed {seed:#x}) failed; bytes {data:?}");
+        }
+        ran += 1;
+    }
+    println!(
+        "{name}: {ran} cases in {:.1} s",
+        start.elapsed().as_secs_f64()
+    );
+    ran
+}
+
+#[test]
+fn triangulate_through_the_c_abi() {
+    let ran = drive(
+        "triangulate",
+        0xF022_0001,
+        number_from_env("FUZZ_CASES", 20_000),
+        160,
+        |d| cases::triangulate(d, false),
+    );
+    assert!(ran > 100, "only {ran} cases ran");
+}
+
+#[test]
+fn file_readers() {
+    // Readers see text: draw bytes from a small alphabet of what the formats are made of.
+    const ALPHABET: &[u8] = b"0123456789 .-+eE#\n\n\n\tnaif1e309";
+    let ran = drive("file readers", 0xF022_0003, 20_000, 200, |d| {
+        let text: Vec<u8> = d
+            .iter()
+            .map(|&b| ALPHABET[b as usize % ALPHABET.len()])
+            .collect();
+        cases::read_files(&text);
+        cases::read_files(d);
+    });
+    assert!(ran > 100, "only {ran} cases ran");
+}
+
+#[test]
+fn switch_parser() {
+    const ALPHABET: &[u8] = b"pqaAcDjevnzYSoiFlsCQVXrIhgBPNEOuwW0123456789.e-+ ";
+    let ran = drive("switches", 0xF022_0004, 50_000, 24, |d| {
+        let text: Vec<u8> = d
+            .iter()
+            .map(|&b| ALPHABET[b as usize % ALPHABET.len()])
+            .collect();
+        cases::parse_switches(&text);
+        cases::parse_switches(d);
+    });
+    assert!(ran > 100, "only {ran} cases ran");
+}
