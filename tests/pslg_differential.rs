@@ -14,6 +14,7 @@ mod common;
 
 use std::process::Command;
 
+use common::examples;
 use common::pslg::{self, Pslg};
 use common::pslg_checks::{
     bypasses_a_vertex, check_constrained_delaunay, pslg_differences, MeshView,
@@ -58,6 +59,14 @@ fn compare(pslg: &Pslg, switch_sets: &[&str]) {
             pslg.name,
             diffs.join("\n  ")
         );
+    }
+}
+
+/// Triangle's own example `.poly` files (read from the PyPI `triangle` package's data directory).
+#[test]
+fn triangle_example_files_match() {
+    for path in examples::files(".poly") {
+        compare(&examples::pslg(&path), SWITCH_SETS);
     }
 }
 

@@ -12,7 +12,9 @@ use common::checks::{
     check_delaunay, check_mesh, check_neighbors, check_point_markers, check_voronoi, differences,
     zero_based, Match,
 };
+use common::examples;
 use common::points::{self, Point};
+use common::pslg_checks::{pslg_differences, MeshView};
 use common::rng::SplitMix64;
 use common::{ours, ours_with, reference, MeshInput, Triangulation};
 
@@ -289,4 +291,48 @@ fn reference_satisfies_the_property_checks() {
             );
         }
     }
+}
+
+/// Triangle's own example `.node` files (read from the PyPI `triangle` package's data
+/// directory; several are grids with cocircular points): the same mesh as Triangle's where the
+/// Delaunay triangulation is unique, the same vertices and triangle counts in the ambiguous
+/// regions, the same markers, edges and neighbours as far as they are determined; and every
+/// output, the Voronoi diagram included, equal where the whole triangulation is unique.
+#[test]
+fn triangle_example_node_files_match() {
+    let Some(triangle) = reference() else { return };
+    let mut unique = 0;
+    for path in examples::files(".node") {
+        let name = examples::name(&path);
+        let input = examples::points(&path);
+        // The large file (greenland, 33 343 vertices) with one switch set: the debug build of
+        // the checks is slow.
+        let sets: &[&str] = if input.points.len() > 5000 {
+            &["Qz"]
+        } else {
+            &["Q", "Qz", "QzcenQ", "QjzeQ", "QBQ"]
+        };
+        for switches in sets {
+            let theirs = triangle.triangulate(switches, &input);
+            let ours =
+                ours(switches, &input).unwrap_or_else(|e| panic!("{name}, \"{switches}\": {e}"));
+            let diffs = pslg_differences(&input, &ours, &theirs);
+            assert!(
+                diffs.is_empty(),
+                "{name}, \"{switches}\": ours differs from Triangle's:\n  {}",
+                diffs.join("\n  ")
+            );
+        }
+        let theirs = triangle.triangulate("Qzcenv", &input);
+        let view = MeshView::of(&theirs).unwrap_or_else(|e| panic!("{name}, Triangle's: {e}"));
+        if view.cocircular_edges().is_empty() {
+            unique += 1;
+            let ours = ours("Qzcenv", &input).unwrap();
+            assert_same(&name, "Qzcenv", &ours, &theirs);
+        }
+    }
+    assert!(
+        unique >= 3,
+        "only {unique} example files have a unique triangulation"
+    );
 }

@@ -351,14 +351,24 @@ fn key_voronoi(t: &Triangulation, v: &Voronoi, mode: Match) -> Option<KeyedVoron
     }
     let width = v.attribute_count.max(0) as usize;
     let attributes = v.point_attributes.clone().unwrap_or_default();
+    // The scale of a circumcentre's rounding error: the circumradius R, times R / (the shortest
+    // edge) for thin triangles, whose centre is ill-conditioned (a sliver's centre lies far
+    // away, and rounding its corners' differences moves it by about eps·R²/edge; Triangle's and
+    // ours then differ by that much, and both from the exact centre).
     let radius = |i: usize| {
-        let corner = t
-            .points
-            .as_ref()
-            .and_then(|p| p.get((corners[i][0] - t.base) as usize))
-            .copied()
-            .unwrap_or([f64::NAN; 2]);
-        ((corner[0] - points[i][0]).powi(2) + (corner[1] - points[i][1]).powi(2)).sqrt()
+        let corner = |k: usize| {
+            t.points
+                .as_ref()
+                .and_then(|p| p.get((corners[i][k] - t.base) as usize))
+                .copied()
+                .unwrap_or([f64::NAN; 2])
+        };
+        let distance = |p: Point, q: Point| ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2)).sqrt();
+        let r = distance(corner(0), points[i]);
+        let shortest = (0..3)
+            .map(|k| distance(corner(k), corner((k + 1) % 3)))
+            .fold(f64::INFINITY, f64::min);
+        r * (r / shortest).max(1.0)
     };
     let vertices = triangles
         .iter()

@@ -5,6 +5,7 @@
 
 pub mod call;
 pub mod checks;
+pub mod examples;
 pub mod points;
 pub mod pslg;
 pub mod pslg_checks;

@@ -150,8 +150,12 @@ pub fn shape_path(name: &str) -> std::path::PathBuf {
 
 /// A classic shape read with our `.poly` reader (regions included), zero-based.
 pub fn shape(name: &str) -> Pslg {
-    let path = shape_path(name);
-    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    from_poly_file(&shape_path(name), name)
+}
+
+/// A PSLG read from a `.poly` file (vertices, segments, holes, regions), renumbered from zero.
+pub fn from_poly_file(path: &std::path::Path, name: &str) -> Pslg {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let poly = read_poly(&text, &path.to_string_lossy(), true).unwrap_or_else(|e| panic!("{e}"));
     let first = poly.vertices.first_number.unwrap_or(1) as i32;
     let input = MeshInput {
