@@ -15,6 +15,8 @@ pub enum Error {
     TooFewPoints,
     /// `a` with a number ≤ 0.
     NonPositiveMaxArea,
+    /// `q` with a number that overflows (`q1e999`).
+    NonFiniteMinAngle,
     /// A coordinate or attribute is NaN or infinite.
     NonFinite { what: &'static str, index: usize },
     /// A switch that this version does not implement.
@@ -45,6 +47,7 @@ impl fmt::Display for Error {
             }
             Error::TooFewPoints => write!(f, "Input must have at least three input vertices."),
             Error::NonPositiveMaxArea => write!(f, "Maximum area must be greater than zero."),
+            Error::NonFiniteMinAngle => write!(f, "Minimum angle (q) must be a finite number."),
             Error::NonFinite { what, index } => {
                 write!(f, "{what} {index} has a coordinate or value that is not finite (NaN or infinity).")
             }

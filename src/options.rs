@@ -180,6 +180,10 @@ impl Options {
                 return Err(Error::NonPositiveMaxArea);
             }
         }
+        if o.min_angle.is_some_and(|angle| !angle.is_finite()) {
+            // Only an exponent can overflow (`q1e999`): no angle means that.
+            return Err(Error::NonFiniteMinAngle);
+        }
         Ok(o)
     }
 
@@ -334,6 +338,15 @@ mod tests {
         assert_eq!(lib("i").algorithm, Algorithm::Incremental);
         assert!(lib("u").quality() && lib("D").quality() && lib("a1").quality());
         assert!(lib("c").uses_segments() && !lib("e").uses_segments());
+    }
+
+    #[test]
+    fn infinite_minimum_angle_is_an_error() {
+        assert_eq!(
+            Options::parse("pq1e999", SwitchSource::Library),
+            Err(Error::NonFiniteMinAngle)
+        );
+        assert_eq!(lib("pq1e1").min_angle, Some(10.0));
     }
 
     #[test]

@@ -5,6 +5,7 @@
 #[allow(dead_code)]
 mod common;
 #[path = "../cases.rs"]
+#[allow(dead_code)]
 mod cases;
 
 libfuzzer_sys::fuzz_target!(|data: &[u8]| cases::parse_switches(data));
