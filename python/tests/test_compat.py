@@ -9,6 +9,14 @@ import triangle_rs as triangle
 from helpers import canonical_triangles, signed_areas, undirected
 
 SQUARE = [[0, 0], [0, 1], [1, 1], [1, 0]]
+#: A 3 x 3 square with a square hole; its region point lies in the ring (area bound 0.1).
+PSLG = {
+    "vertices": [[0, 0], [3, 0], [3, 3], [0, 3], [1, 1], [2, 1], [2, 2], [1, 2]],
+    "segments": [[0, 1], [1, 2], [2, 3], [3, 0], [4, 5], [5, 6], [6, 7], [7, 4]],
+    "segment_markers": [1, 1, 1, 1, 2, 2, 2, 2],
+    "holes": [[1.5, 1.5]],
+    "regions": [[0.5, 0.5, 3.0, 0.1]],
+}
 FIVE_POINTS = [[0, 0], [0, 1], [0.5, 0.5], [1, 1], [1, 0]]
 
 
@@ -71,14 +79,7 @@ def test_triangulate_square_with_maximum_area():
 
 
 def test_pslg_with_hole_and_regions_keys():
-    tri = {
-        "vertices": [[0, 0], [3, 0], [3, 3], [0, 3], [1, 1], [2, 1], [2, 2], [1, 2]],
-        "segments": [[0, 1], [1, 2], [2, 3], [3, 0], [4, 5], [5, 6], [6, 7], [7, 4]],
-        "segment_markers": [1, 1, 1, 1, 2, 2, 2, 2],
-        "holes": [[1.5, 1.5]],
-        "regions": [[0.5, 0.5, 3.0, 0.0]],
-    }
-    out = triangle.triangulate(tri, "pA")
+    out = triangle.triangulate(PSLG, "pA")
     assert out["holes"].tolist() == [[1.5, 1.5]]
     assert out["regions"].shape == (1, 4)
     assert out["triangle_attributes"].shape == (len(out["triangles"]), 1)
@@ -132,13 +133,6 @@ def test_refinement_with_per_triangle_maximum_areas():
 
 # --- the same output keys as the PyPI package for the same switches ------------------------------
 
-PSLG = {
-    "vertices": [[0, 0], [3, 0], [3, 3], [0, 3], [1, 1], [2, 1], [2, 2], [1, 2]],
-    "segments": [[0, 1], [1, 2], [2, 3], [3, 0], [4, 5], [5, 6], [6, 7], [7, 4]],
-    "segment_markers": [1, 1, 1, 1, 2, 2, 2, 2],
-    "holes": [[1.5, 1.5]],
-    "regions": [[0.5, 0.5, 3.0, 0.1]],
-}
 WITH_ATTRIBUTES = {"vertices": SQUARE, "vertex_attributes": [[1], [2], [3], [4]], "vertex_markers": [5, 6, 7, 8]}
 KEY_CASES = [
     ("square", s) for s in ["", "a0.2", "q", "c", "cne", "v", "o2", "j", "B", "P", "N", "E", "I", "cP"]

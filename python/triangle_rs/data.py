@@ -56,9 +56,9 @@ class _Tokens:
 
 
 def _numbers(rows: np.ndarray, dtype: str) -> np.ndarray:
-    if dtype == "intc":
-        return np.array([[int(float(value)) for value in row] for row in rows], dtype=np.intc).reshape(rows.shape)
-    return np.array(rows, dtype=np.float64)
+    # Through float64, as Triangle reads every number with strtod ("1.0" is a valid index).
+    values = np.array(rows, dtype=np.float64)
+    return values.astype(np.intc) if dtype == "intc" else values
 
 
 class _Reader:
