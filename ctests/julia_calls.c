@@ -413,6 +413,8 @@ static int unsuitable_trampoline(double org_x, double org_y, double dest_x, doub
         call->cancel = 1;
         return 0;
     }
+    /* Julia: `convert(Cint, verdict) != 0`, so `true`, `1` and `1.0` all split; a result that
+       does not convert (0.5, "yes") throws inside the try, like the negative verdict here. */
     return verdict ? 1 : 0;
 }
 
@@ -431,10 +433,14 @@ static JlResult jl_triangulate(const char *switches, const JTriangulateIO *triin
     JlResult result = {JL_OK, ""};
     *triout = jl_triangulateio();
     *vorout = jl_triangulateio();
-    if (strchr(switches, 'z') != NULL) {
-        result.outcome = JL_ARGUMENT_ERROR;
-        return result;
+    /* replace(switches, "z" => ""): Julia's indices stay 1-based whatever the switches say. */
+    char without_z[256];
+    size_t kept = 0;
+    for (const char *c = switches; *c != '\0' && kept + 1 < sizeof without_z; c++) {
+        if (*c != 'z') without_z[kept++] = *c;
     }
+    without_z[kept] = '\0';
+    switches = without_z;
     const JTriangulateIO input = *triin; /* shallow_copy: the same arrays */
     struct CTriangulateIO ctio_in, ctio_out, vor_out;
     memset(&ctio_out, 0, sizeof ctio_out); /* CTriangulateIO(): NULL and 0 everywhere */
@@ -1148,6 +1154,43 @@ static void case_u_two_threads(void) {
     end_case();
 }
 
+static void case_z_is_dropped(void) {
+    begin_case("z is accepted and dropped: pzQ is pQ, indices stay 1-based");
+    JTriangulateIO triin = diamond(), zmesh, zvor, plain, plain_vor;
+    bool z_ok = run("pzQ", &triin, &zmesh, &zvor, NULL, NULL);
+    bool plain_ok = run("pQ", &triin, &plain, &plain_vor, NULL, NULL);
+    if (z_ok && plain_ok) {
+        check_mesh(&zmesh, 2.0);
+        int n = jl_items(zmesh.pointlist), count = jl_items(plain.trianglelist);
+        int low = n + 1, high = 0;
+        for (int k = 1; k <= jl_items(zmesh.trianglelist); k++) {
+            for (int i = 1; i <= 3; i++) {
+                int corner = JI(zmesh.trianglelist, i, k);
+                low = corner < low ? corner : low;
+                high = corner > high ? corner : high;
+            }
+        }
+        CHECK(low == 1 && high == n, "corner indices span %d..%d with %d points", low, high, n);
+        CHECK(count == 2, "pQ of the diamond has %d triangles", count);
+        int expected[2][3];
+        for (int k = 1; k <= count && k <= 2; k++) {
+            for (int i = 1; i <= 3; i++) expected[k - 1][i - 1] = JI(plain.trianglelist, i, k);
+        }
+        CHECK(same_triangles(&zmesh, (const int (*)[3])expected, count), "pzQ and pQ differ");
+        for (int s = 1; s <= jl_items(zmesh.segmentlist); s++) {
+            for (int i = 1; i <= 2; i++) {
+                int end = JI(zmesh.segmentlist, i, s);
+                CHECK(end >= 1 && end <= n, "segment end %d with %d points", end, n);
+            }
+        }
+    }
+    jl_gc_collect(&zmesh);
+    jl_gc_collect(&zvor);
+    jl_gc_collect(&plain);
+    jl_gc_collect(&plain_vor);
+    end_case();
+}
+
 static void case_u_throws(void) {
     begin_case("an exception in the test cancels the call and is rethrown");
     JTriangulateIO triin = diamond(), triout, vorout;
@@ -1174,6 +1217,7 @@ int main(void) {
     case_u_global();
     case_u_two_threads();
     case_u_throws();
+    case_z_is_dropped();
     for (int i = 0; i < julia_heap_used; i++) free(julia_heap[i]);
     printf("%d failed\n", failures);
     return failures == 0 ? 0 : 1;

@@ -149,6 +149,7 @@ const CASES: &[&str] = &[
     "u with the global triunsuitable_callback (Triangulate.jl unchanged)",
     "u from two threads at once, each with its own test",
     "an exception in the test cancels the call and is rethrown",
+    "z is accepted and dropped: pzQ is pQ, indices stay 1-based",
 ];
 
 #[test]

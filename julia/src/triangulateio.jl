@@ -264,19 +264,19 @@ the Voronoi diagram (filled only with `v`). Output arrays are owned by Julia; `h
 `regionlist` of `triout` are `triin`'s arrays (Triangle copies their pointers).
 
 Throws [`TriangulateError`](@ref) with the library's message on an error (the process never
-exits). Differences from Triangulate.jl: the `z` switch is refused (indices are 1-based
-here); the order of output triangles, edges and new points differs from Triangle's; the
-`u` test is `unsuitable` if given, else the current task's (see [`triunsuitable!`](@ref)).
+exits). Differences from Triangulate.jl: the `z` switch is accepted and has no effect, since
+indices are always 1-based here (Triangulate.jl hands it to Triangle, and its output is then
+numbered from 0); the order of output triangles, edges and new points differs from Triangle's;
+the `u` test is `unsuitable` if given, else the current task's (see [`triunsuitable!`](@ref)).
 
 Numbers after switches may use exponent notation (`"a1e-5"` is the area bound 1e-5; Triangle
 reads it as `a1` followed by the switch `e`), and are read independently of the C locale.
 Fixed notation (`@sprintf("a%.15f", area)`) means the same to both libraries.
 """
 function triangulate(switches::AbstractString, triin::TriangulateIO; unsuitable = current_unsuitable())
-    switch_string = String(switches)
-    if occursin('z', switch_string)
-        throw(ArgumentError("TriangleRS numbers points from 1: remove the `z` switch from $(repr(switch_string))"))
-    end
+    # `z` (number from 0) would make the library read and write 0-based indices; Julia's are
+    # 1-based, so it is dropped. No number after a switch contains a `z`.
+    switch_string = replace(String(switches), "z" => "")
     input = shallow_copy(triin)
     ctio_out = CTriangulateIO()
     vor_out = CTriangulateIO()

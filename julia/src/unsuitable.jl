@@ -29,8 +29,11 @@ per call: `triangulate(switches, triin; unsuitable = f)`.
 
 If the test throws, refinement is stopped and `triangulate` rethrows the exception.
 
-With `check_signature`, `unsuitable` is called once on a sample triangle and must return a
-`Bool` (or an integer, 0 meaning suitable).
+The result may be anything that converts to `Cint` (as in Triangulate.jl, which passes
+`Cint(unsuitable(...))` to Triangle): `true`/`false`, an integer, `1.0`; non-zero means split.
+With `check_signature`, `unsuitable` is called once on a sample triangle and its result must
+convert to `Cint` (otherwise an `ArgumentError`); a result that does not convert during a
+refinement stops it, and `triangulate` rethrows the conversion error.
 
 ```julia
 triunsuitable!((x1, y1, x2, y2, x3, y3, area) -> area > 0.01 * (1 + x1^2))
@@ -40,9 +43,16 @@ triout, _ = triangulate("pquQ", triin)
 function triunsuitable!(unsuitable; check_signature::Bool = true)
     if unsuitable !== nothing && check_signature
         verdict = unsuitable(0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 0.5)
-        verdict isa Union{Bool,Integer} || throw(ArgumentError(
-            "the unsuitable test must return a Bool, but returned $(repr(verdict)) for " *
-            "the triangle (0,0), (1,0), (0,1) with area 0.5"))
+        converts = try
+            unsuitable_verdict(verdict)
+            true
+        catch err
+            err isa Union{MethodError,InexactError} || rethrow()
+            false
+        end
+        converts || throw(ArgumentError(
+            "the unsuitable test must return a value that converts to Cint (e.g. a Bool), " *
+            "but returned $(repr(verdict)) for the triangle (0,0), (1,0), (0,1) with area 0.5"))
     end
     task_local_storage(TASK_KEY, unsuitable)
     lock(DEFAULT_TEST_LOCK) do
@@ -71,8 +81,8 @@ end
 
 UnsuitableCall(test) = UnsuitableCall(test, Ref{Cint}(0), nothing)
 
-unsuitable_verdict(verdict::Bool) = verdict
-unsuitable_verdict(verdict::Integer) = !iszero(verdict)
+# Triangulate.jl's rule: the result converted to `Cint`, non-zero meaning unsuitable.
+unsuitable_verdict(verdict) = convert(Cint, verdict) != Cint(0)
 
 # Called by the library (from the thread that called `triangulate_reentrant`) with the
 # triangle's origin, destination and apex, its area, and our `user_data`. A Julia exception

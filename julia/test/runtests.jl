@@ -184,6 +184,7 @@ end
             e
         end
         @test err isa TriangulateError
+        @test typeof(err) == TriangulateError           # Triangulate.jl's own test checks this
         @test occursin("at least three", err.msg)
         @test occursin("TriangulateError", sprint(showerror, err))
     end
@@ -315,6 +316,9 @@ end
         @test triunsuitable!(counting) === nothing
         @test calls[] == 1                   # check_signature tried it once
         @test_throws ArgumentError triunsuitable!((args...) -> "yes")
+        @test_throws ArgumentError triunsuitable!((args...) -> 0.5)      # no exact Cint
+        @test triunsuitable!((args...) -> 1.0) === nothing               # Cint(1.0) == 1
+        @test triunsuitable!((args...) -> Int8(0)) === nothing
         @test triunsuitable!(counting; check_signature = false) === nothing
         triangulate("Q", diamond)            # no `u`: the test is never called
         @test calls[] == 1
@@ -358,6 +362,13 @@ end
         end
     end
 
+    @testset "the test's result converts to Cint, as in Triangulate.jl" begin
+        triout, _ = triangulate("quQ", diamond; unsuitable = (x1, y1, x2, y2, x3, y3, area) -> area > 0.05 ? 1.0 : 0.0)
+        check_mesh(triout; area = 2.0)
+        @test maximum(triangle_areas(triout)) <= 0.05 * (1 + 1e-12)
+        @test_throws InexactError triangulate("quQ", diamond; unsuitable = (args...) -> 0.5)
+    end
+
     @testset "an exception in the test stops refinement and is rethrown" begin
         failing = (args...) -> throw(StopMeshing())
         err = try
@@ -373,6 +384,11 @@ end
         text = sprint(show, diamond)
         @test occursin("pointlist", text) && occursin("segmentlist", text)
         @test !occursin("holelist", text)
-        @test_throws ArgumentError triangulate("zQ", diamond)
+        # `z` is accepted (Triangulate.jl passes it on) and indices stay 1-based.
+        zmesh, _ = triangulate("pzQ", diamond)
+        plain, _ = triangulate("pQ", diamond)
+        @test triangle_set(zmesh) == triangle_set(plain)
+        @test minimum(zmesh.trianglelist) == 1 && maximum(zmesh.trianglelist) == numberofpoints(zmesh)
+        @test minimum(zmesh.segmentlist) == 1
     end
 end

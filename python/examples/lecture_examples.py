@@ -8,7 +8,8 @@ switch strings (0-based indices, as everywhere in triangle_rs): point sets (``Q`
 ``vcDQ``, ``pcQ``) and a domain with a notch (``pQ``, ``pa0.05Q``, ``pa0.05DQ``, ``pa0.05q20Q``,
 local refinement through the unsuitable callback ``pauq20Q``, two regions ``paAq20Q``, a square with
 two square holes). An example that fails prints ``failed: <message>``; the others still run, and the
-script exits with status 1.
+script exits with status 1. The mesh of the two regions is also written as ``domain_regions.vtu``
+(VTK, with the region attribute per triangle) through meshio, when meshio is installed.
 """
 
 from __future__ import annotations
@@ -39,6 +40,8 @@ class Example(NamedTuple):
     voronoi: bool = False
     circumcircles: bool = False
     unsuitable: Optional[Callable[..., bool]] = None
+    #: Also write the mesh as a VTK file (``<name>.vtu``, through meshio).
+    vtu: bool = False
 
 
 def random_points(rng: np.random.Generator, n: int = 10, raster: int = 10) -> np.ndarray:
@@ -130,7 +133,7 @@ EXAMPLES = [
         "domain_localref", "Local refinement around (0.8, 0.6)", f"pauq{MIN_ANGLE!r}Q", notched_square,
         unsuitable=refine_near(0.8, 0.6),
     ),
-    Example("domain_regions", "Two regions with their own areas", f"paAq{MIN_ANGLE!r}Q", two_regions),
+    Example("domain_regions", "Two regions with their own areas", f"paAq{MIN_ANGLE!r}Q", two_regions, vtu=True),
     Example("domain_holes", "A square with two square holes", f"pa{MAX_AREA!r}q{MIN_ANGLE!r}Q", square_with_two_holes),
 ]
 
@@ -157,7 +160,20 @@ def run_example(example: Example, output_dir: Path, rng: np.random.Generator) ->
         f"{example.name} ({example.switches}): {triout.numberofpoints} points, "
         f"{triout.numberoftriangles} triangles, {triout.numberofsegments} segments -> {path}"
     )
+    if example.vtu:
+        write_vtu(triout, output_dir / f"{example.name}.vtu")
     return path
+
+
+def write_vtu(mesh: TriangulateIO, path: Path) -> None:
+    """The mesh as VTK through meshio (the package's optional [meshio] extra)."""
+    try:
+        import meshio  # noqa: F401
+    except ImportError:
+        print(f"{path.name}: not written (meshio is not installed: pip install \"./python[meshio]\")")
+        return
+    triangle_rs.to_meshio(mesh).write(path)
+    print(f"{path.stem}: VTK mesh -> {path}")
 
 
 def main(argv: Optional[list[str]] = None) -> int:

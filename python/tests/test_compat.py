@@ -9,6 +9,14 @@ import triangle_rs as triangle
 from helpers import canonical_triangles, signed_areas, undirected
 
 SQUARE = [[0, 0], [0, 1], [1, 1], [1, 0]]
+#: A 3 x 3 square with a square hole; its region point lies in the ring (area bound 0.1).
+PSLG = {
+    "vertices": [[0, 0], [3, 0], [3, 3], [0, 3], [1, 1], [2, 1], [2, 2], [1, 2]],
+    "segments": [[0, 1], [1, 2], [2, 3], [3, 0], [4, 5], [5, 6], [6, 7], [7, 4]],
+    "segment_markers": [1, 1, 1, 1, 2, 2, 2, 2],
+    "holes": [[1.5, 1.5]],
+    "regions": [[0.5, 0.5, 3.0, 0.1]],
+}
 FIVE_POINTS = [[0, 0], [0, 1], [0.5, 0.5], [1, 1], [1, 0]]
 
 
@@ -71,14 +79,7 @@ def test_triangulate_square_with_maximum_area():
 
 
 def test_pslg_with_hole_and_regions_keys():
-    tri = {
-        "vertices": [[0, 0], [3, 0], [3, 3], [0, 3], [1, 1], [2, 1], [2, 2], [1, 2]],
-        "segments": [[0, 1], [1, 2], [2, 3], [3, 0], [4, 5], [5, 6], [6, 7], [7, 4]],
-        "segment_markers": [1, 1, 1, 1, 2, 2, 2, 2],
-        "holes": [[1.5, 1.5]],
-        "regions": [[0.5, 0.5, 3.0, 0.0]],
-    }
-    out = triangle.triangulate(tri, "pA")
+    out = triangle.triangulate(PSLG, "pA")
     assert out["holes"].tolist() == [[1.5, 1.5]]
     assert out["regions"].shape == (1, 4)
     assert out["triangle_attributes"].shape == (len(out["triangles"]), 1)
@@ -128,3 +129,47 @@ def test_refinement_with_per_triangle_maximum_areas():
     assert in_bounded.sum() >= 0.5 / 0.02
     assert np.all(areas[in_bounded] <= 0.02 + 1e-12)
     assert len(out["triangles"]) > len(first["triangles"])
+
+
+# --- the same output keys as the PyPI package for the same switches ------------------------------
+
+WITH_ATTRIBUTES = {"vertices": SQUARE, "vertex_attributes": [[1], [2], [3], [4]], "vertex_markers": [5, 6, 7, 8]}
+KEY_CASES = [
+    ("square", s) for s in ["", "a0.2", "q", "c", "cne", "v", "o2", "j", "B", "P", "N", "E", "I", "cP"]
+] + [("attributes", s) for s in ["", "q", "ca0.1"]] + [
+    ("pslg", s) for s in ["", "p", "pA", "pq", "pc", "pne", "pP", "cP", "pcP", "pa0.1", "pAa", "pv", "c", "pq30a0.05AQ"]
+] + [("face.1", s) for s in ["r", "rc", "rp", "rpc", "rq", "rpq", "rpP", "rpa100"]] + [
+    ("bbox.1", s) for s in ["ra", "rpa", "rpa0.2"]
+] + [("la", s) for s in ["pqa", "pqaA"]]  # fmt: skip
+
+
+def _input(name, pypi):
+    if name == "square":
+        return {"vertices": SQUARE}
+    if name == "attributes":
+        return WITH_ATTRIBUTES
+    if name == "pslg":
+        return PSLG
+    return pypi.get_data(name)
+
+
+@pytest.fixture(scope="module")
+def pypi():
+    import triangle as real
+
+    assert not real.__name__.startswith("triangle_rs")
+    return real
+
+
+@pytest.mark.parametrize("name, opts", KEY_CASES, ids=[f"{n}-{o or 'none'}" for n, o in KEY_CASES])
+def test_output_keys_match_the_pypi_package(name, opts, pypi):
+    tri = _input(name, pypi)
+    theirs = pypi.triangulate(tri, opts)
+    ours = triangle.triangulate(tri, opts)
+    assert sorted(ours) == sorted(theirs)
+    # Holes and regions come back as given (Triangle hands the input's arrays back), `r` included.
+    for key in ("holes", "regions"):
+        if key in theirs:
+            assert ours[key].tolist() == theirs[key].tolist() == np.asarray(tri[key], dtype=float).tolist()
+    for key, array in ours.items():
+        assert array.ndim == 2 and array.dtype.kind == theirs[key].dtype.kind, key

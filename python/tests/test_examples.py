@@ -6,6 +6,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import meshio
 import numpy as np
 from matplotlib.image import imread
 
@@ -74,8 +75,11 @@ def test_script_writes_one_png_per_example(tmp_path):
         image = imread(png)
         assert (image[..., :3].sum(axis=2) < 2.0).mean() > 0.005, f"{png} looks blank"
     assert sorted(p.name for p in (tmp_path / "results").iterdir()) == sorted(
-        f"{e.name}.png" for e in lecture_examples.EXAMPLES
+        [f"{e.name}.png" for e in lecture_examples.EXAMPLES] + ["domain_regions.vtu"]
     )
+    vtu = meshio.read(tmp_path / "results" / "domain_regions.vtu")
+    assert vtu.cells[0].type == "triangle" and len(vtu.cells[0].data) > 10
+    assert set(np.unique(vtu.cell_data["triangle_attribute_0"][0])) == {1.0, 2.0}
     assert re.search(rf"^{len(lecture_examples.EXAMPLES)} PNGs written .*, 0 examples failed", result.stdout.splitlines()[-1])
 
 

@@ -27,6 +27,8 @@ def test_wheel_bundles_the_library_and_loads_it(tmp_path):
         names = archive.namelist()
         assert "triangle_rs/libtriangle_rs.so" in names or "triangle_rs/libtriangle_rs.dylib" in names or "triangle_rs/triangle_rs.dll" in names
         assert "triangle_rs/__init__.py" in names and "triangle_rs/plotting.py" in names
+        # The examples of our own making that get_data falls back to.
+        assert "triangle_rs/data/A.poly" in names and "triangle_rs/data/bbox.1.area" in names
         archive.extractall(tmp_path / "site")
 
     env = {k: v for k, v in os.environ.items() if k not in ("TRIANGLE_RS_LIBRARY", "PYTHONPATH")}
@@ -37,7 +39,8 @@ def test_wheel_bundles_the_library_and_loads_it(tmp_path):
             "-c",
             "import triangle_rs\n"
             "print(triangle_rs.library_path())\n"
-            "print(len(triangle_rs.delaunay([[0, 0], [0, 1], [0.5, 0.5], [1, 1], [1, 0]])))\n",
+            "print(len(triangle_rs.delaunay([[0, 0], [0, 1], [0.5, 0.5], [1, 1], [1, 0]])))\n"
+            "print(len(triangle_rs.load(triangle_rs.data.OWN_DATA_DIRECTORY, 'A')['vertices']))\n",
         ],
         cwd=tmp_path,
         env=env,
@@ -46,6 +49,6 @@ def test_wheel_bundles_the_library_and_loads_it(tmp_path):
         timeout=120,
     )
     assert check.returncode == 0, check.stderr
-    library, triangles = check.stdout.splitlines()
+    library, triangles, letter_a_vertices = check.stdout.splitlines()
     assert Path(library).parent == tmp_path / "site" / "triangle_rs"
-    assert triangles == "4"
+    assert triangles == "4" and int(letter_a_vertices) > 3

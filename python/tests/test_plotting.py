@@ -81,5 +81,9 @@ def test_plot_in_out_writes_a_png(tmp_path):
 
 
 def test_plot_functions_are_reachable_from_the_package():
-    assert triangle_rs.plot_in_out is plot_in_out
-    assert triangle_rs.plot_triangulateio is plot_triangulateio
+    triin = TriangulateIO(pointlist=[[0, 0], [1, 0], [0, 1], [1, 1]])
+    triout, _ = triangle_rs.triangulate("", triin)
+    figure = triangle_rs.plot_in_out(triin, triout, title="four points")
+    assert len(figure.axes) == 2 and figure.axes[1].collections
+    ax = figure.axes[0]
+    assert triangle_rs.plot_triangulateio(ax, triout) is ax

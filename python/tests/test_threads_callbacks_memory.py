@@ -207,6 +207,52 @@ def test_keyboard_interrupt_sets_the_cancel_flag_and_is_re_raised():
     assert library.saw_cancel
 
 
+class SlowToStopLibrary:
+    """Stands in for the library: raises ``signals`` in this process one after the other, sees
+    the cancel flag, and returns only a while later, as a library finishing its current step."""
+
+    path = "slow-to-stop stand-in"
+
+    def __init__(self, signals):
+        self.signals = signals
+        self.saw_cancel = False
+        self.returned = False
+
+    def triangulate(self, switches, tin, tout, vorout, unsuitable, cancel):
+        for number in self.signals:
+            os.kill(os.getpid(), number)
+            time.sleep(0.05)
+        for _ in range(3000):
+            if cancel.value:
+                self.saw_cancel = True
+                break
+            time.sleep(0.01)
+        time.sleep(0.3)
+        self.returned = True
+        return 0, ""
+
+    def free(self, address):
+        raise AssertionError("nothing was allocated")
+
+
+@pytest.mark.parametrize("raised", [SystemExit, LookupError])
+def test_any_exception_while_waiting_cancels_and_is_raised_after_the_library_returned(raised):
+    # A signal handler raising SystemExit (or anything else), then a second Ctrl-C while the
+    # library winds down: the first exception comes out, and only after the library returned.
+    library = SlowToStopLibrary([signal.SIGUSR1, signal.SIGINT])
+
+    def handler(_number, _frame):
+        raise raised("from a signal handler")
+
+    previous = signal.signal(signal.SIGUSR1, handler)
+    try:
+        with pytest.raises(raised):
+            run("Qq", TriangulateIO(pointlist=SQUARE_POINTS), library=library)
+    finally:
+        signal.signal(signal.SIGUSR1, previous)
+    assert library.saw_cancel and library.returned
+
+
 def test_keyboard_interrupt_stops_a_real_refinement():
     limit = 2_000_000
     calls = []

@@ -6,10 +6,13 @@ Three APIs over one library call (``ctypes`` and ``numpy`` only; nothing is comp
   segmentlist=...))``, with a per-call ``unsuitable=`` callback for switch ``u``.
 * The PyPI ``triangle`` package's: ``triangulate({'vertices': ...}, 'pq')``, ``delaunay``,
   ``convex_hull``, ``voronoi`` (``import triangle_rs as triangle`` runs existing code).
+  Also its data files and plots: ``get_data``, ``loads``, ``load``, ``show_data``, ``plot``,
+  ``compare`` and ``comparev``.
 * Keywords: ``mesh(points, segments=..., holes=..., min_angle=30, max_area=1e-3)``.
 
 Plots (matplotlib, imported only when used): ``plot_triangulateio`` and ``plot_in_out`` from
-:mod:`triangle_rs.plotting`, also reachable as attributes of this package.
+:mod:`triangle_rs.plotting`. meshio (imported only when used): ``to_meshio(out)``. Neither
+``import triangle_rs`` nor ``from triangle_rs import *`` imports matplotlib or meshio.
 
 All indices are 0-based. Errors raise :class:`TriangulateError` with the library's message.
 """
@@ -24,7 +27,10 @@ from . import compat, core
 from ._library import ENVIRONMENT_VARIABLE, Library, load_library
 from .compat import convex_hull, delaunay, voronoi
 from .core import TriangulateError, Unsuitable
+from .data import get_data, load, loads, show_data
 from .meshing import MeshResult, mesh, mesh_switches
+from .meshio_io import to_meshio
+from .pypi_plot import compare, comparev, plot
 from .triangulateio import TriangulateIO, numberofedges, numberofpoints, numberofsegments, numberoftriangles
 
 __version__ = "0.1.0"
@@ -36,17 +42,25 @@ __all__ = [
     "TriangulateError",
     "TriangulateIO",
     "Unsuitable",
+    "compare",
+    "comparev",
     "convex_hull",
     "delaunay",
+    "get_data",
     "library_path",
+    "load",
+    "loads",
     "mesh",
     "mesh_switches",
     "numberofedges",
     "numberofpoints",
     "numberofsegments",
     "numberoftriangles",
+    "plot",
     "plot_in_out",
     "plot_triangulateio",
+    "show_data",
+    "to_meshio",
     "triangulate",
     "voronoi",
 ]
@@ -94,10 +108,16 @@ def library_path() -> str:
     return load_library().path
 
 
-def __getattr__(name: str) -> Any:
-    # The plots need matplotlib, which `import triangle_rs` must not import.
-    if name in ("plot_triangulateio", "plot_in_out"):
-        from . import plotting
+def plot_triangulateio(ax: Any, tio: TriangulateIO, voronoi: Optional[TriangulateIO] = None, circumcircles: bool = False, **options: Any) -> Any:
+    """Draws ``tio`` into the matplotlib axes ``ax``: see :func:`triangle_rs.plotting.plot_triangulateio`."""
+    # Imported here: `import triangle_rs` (and `import *`) must not import matplotlib.
+    from . import plotting
 
-        return getattr(plotting, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    return plotting.plot_triangulateio(ax, tio, voronoi, circumcircles, **options)
+
+
+def plot_in_out(triin: TriangulateIO, triout: TriangulateIO, voronoi: Optional[TriangulateIO] = None, circumcircles: bool = False, **options: Any) -> Any:
+    """Input and output side by side in a new figure: see :func:`triangle_rs.plotting.plot_in_out`."""
+    from . import plotting
+
+    return plotting.plot_in_out(triin, triout, voronoi, circumcircles, **options)

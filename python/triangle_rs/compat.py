@@ -71,8 +71,31 @@ def triangulate(tri: Mapping[str, Any], opts: str = "", *, unsuitable: Optional[
         raise TypeError(f"opts must be a str, got {type(opts).__name__}")
     if unsuitable is not None and "u" not in opts:
         raise ValueError("an unsuitable callback is used only with the switch 'u': add it to opts")
-    out, _ = run("Qz" + opts, from_dict(tri), unsuitable=unsuitable)
-    return to_dict(out)
+    tio = from_dict(tri)
+    out, _ = run("Qz" + opts, tio, unsuitable=unsuitable)
+    return to_dict(select_outputs(out, tio, opts))
+
+
+def select_outputs(out: TriangulateIO, tin: TriangulateIO, opts: str) -> TriangulateIO:
+    """The output fields Triangle (and so the PyPI package) returns for the switches ``opts``:
+    segments only with ``p`` or ``c``; the input's holes and regions whenever ``p`` is given
+    (Triangle hands the input's arrays back), ``r`` included; neither with ``P`` (no polygon
+    output). ``opts`` holds no other letters that matter here: numbers are digits, ``.`` and
+    (triangle-rs only) ``e``."""
+    letters = set(opts)
+    writes_polygon = "P" not in letters
+    if not (writes_polygon and letters & {"p", "c"}):
+        out.segmentlist = None
+        out.segmentmarkerlist = None
+    if writes_polygon and "p" in letters:
+        if not out.numberofholes:
+            out.holelist = tin.holelist
+        if not out.numberofregions:
+            out.regionlist = tin.regionlist
+    else:
+        out.holelist = None
+        out.regionlist = None
+    return out
 
 
 def _points(pts: Any) -> TriangulateIO:

@@ -56,8 +56,9 @@ def triangulate(
     it raises stops the refinement and is re-raised here.
 
     Raises :class:`TriangulateError` with the library's message when the input or the switches
-    are refused. The GIL is released while the library works. Ctrl-C (KeyboardInterrupt) asks the
-    library to stop refining and is re-raised once it has.
+    are refused. The GIL is released while the library works. Ctrl-C (KeyboardInterrupt), or any
+    exception raised while the call runs, asks the library to stop refining and is re-raised once
+    it has returned.
     """
     if not isinstance(switches, str):
         raise TypeError(f"switches must be a str, got {type(switches).__name__}")
@@ -95,8 +96,7 @@ def run(
     c_callback = _wrap_unsuitable(unsuitable, cancel, callback_errors) if unsuitable is not None else None
 
     def call(_inputs: list = keep_alive) -> tuple[int, str]:
-        # `_inputs` holds the input arrays as long as the library may read them, even when a
-        # second Ctrl-C abandons the call.
+        # `_inputs` holds the input arrays as long as the library may read them.
         return lib.triangulate(encoded, c_in, c_out, c_vorout, c_callback, cancel)
 
     may_run_long = bool(_REFINING_SWITCHES & set(switches)) or c_in.numberofpoints >= _LARGE_INPUT_POINTS
@@ -109,8 +109,7 @@ def run(
             raise TriangulateError(message or f"triangulate failed (code {code})", code)
         return from_c(c_out), from_c(c_vorout)
     finally:
-        # An abandoned call still runs and will write into the output structs: leak them
-        # rather than free memory the library is about to use.
+        # `run_interruptibly` returns or raises only once the library is done with the structs.
         if foreign.finished():
             free_c(c_out, lib.free)
             free_c(c_vorout, lib.free)
@@ -138,55 +137,79 @@ def _wrap_unsuitable(
 
 
 class _ForeignCall:
-    """One library call that Ctrl-C can stop.
+    """One library call that Ctrl-C can stop, and that no exception leaves running.
 
     Python handles signals only in the main thread and only between bytecodes, never inside a
     foreign call. So on the main thread the call runs in a worker thread while the main thread
-    waits. A first KeyboardInterrupt sets the ``cancel`` flag that the library polls during
-    refinement; the main thread waits for the library to return (so that its outputs can be
-    freed) and then re-raises. A second KeyboardInterrupt stops waiting at once: the call is
-    abandoned (it finishes in the background and its outputs leak). Off the main thread, or when
-    the call is not ``interruptible`` (short calls), it simply runs on the calling thread.
+    waits. Any exception raised in the waiting thread (KeyboardInterrupt, SystemExit from a
+    signal handler, ...) sets the ``cancel`` flag that the library polls, and is re-raised only
+    once the library has returned: never while it still runs (it writes into the output structs,
+    and a daemon thread inside the library when the interpreter exits aborts the process).
+    Further interrupts while waiting are absorbed; the first exception is the one raised.
+
+    Completion is a plain attribute that the worker sets, not ``Thread.is_alive()``, which an
+    interrupted ``join`` leaves false on Python 3.11 while the thread still runs. Off the main
+    thread, or when the call is not ``interruptible`` (short calls), the call simply runs on the
+    calling thread.
     """
+
+    _PENDING, _RUNNING, _DONE, _NEVER_STARTED = range(4)
 
     def __init__(self, function: Callable[[], tuple[int, str]], interruptible: bool = True):
         self._function = function
         self._interruptible = interruptible
         self._result: Optional[tuple[int, str]] = None
         self._error: Optional[BaseException] = None
-        self._thread: Optional[threading.Thread] = None
+        self._state_lock = threading.Lock()
+        self._state = self._DONE if not interruptible else self._PENDING
+        # Held by the caller while the worker runs; released by the worker when it is done, so
+        # that the waiting thread wakes at once rather than at its next poll.
+        self._finished_signal = threading.Lock()
 
     def finished(self) -> bool:
-        return self._thread is None or not self._thread.is_alive()
+        """True once the library cannot touch the call's structs any more."""
+        return self._state in (self._DONE, self._NEVER_STARTED)
 
     def _work(self) -> None:
+        with self._state_lock:
+            if self._state == self._NEVER_STARTED:
+                return  # the caller gave up before this thread began: the library is never called
+            self._state = self._RUNNING
         try:
             self._result = self._function()
         except BaseException as error:  # noqa: BLE001 - re-raised on the calling thread
             self._error = error
+        finally:
+            with self._state_lock:
+                self._state = self._DONE
+            self._finished_signal.release()
 
     def run_interruptibly(self, cancel: ctypes.c_int) -> tuple[int, str]:
         if not self._interruptible or threading.current_thread() is not threading.main_thread():
-            return self._function()
-        self._thread = threading.Thread(target=self._work, name="triangle_rs-triangulate", daemon=True)
-        first_interrupt: Optional[KeyboardInterrupt] = None
-        started = False
-        while True:
-            # Ctrl-C may arrive anywhere in here, even inside Thread.start().
             try:
-                if not started:
-                    started = True
-                    self._thread.start()
-                while self._thread.is_alive():
-                    self._thread.join(_INTERRUPT_POLL_SECONDS)
-                break
-            except KeyboardInterrupt as error:
+                return self._function()
+            finally:
+                self._state = self._DONE
+        self._finished_signal.acquire()
+        pending: Optional[BaseException] = None
+        try:
+            threading.Thread(target=self._work, name="triangle_rs-triangulate", daemon=True).start()
+        except BaseException as error:  # noqa: BLE001 - e.g. Ctrl-C inside Thread.start()
+            pending = error
+            cancel.value = 1
+            with self._state_lock:
+                if self._state == self._PENDING:
+                    # The worker has not begun (and may never): make sure it never calls.
+                    self._state = self._NEVER_STARTED
+        while not self.finished():
+            try:
+                self._finished_signal.acquire(timeout=_INTERRUPT_POLL_SECONDS)
+            except BaseException as error:  # noqa: BLE001 - re-raised once the library returned
+                if pending is None:
+                    pending = error
                 cancel.value = 1
-                if first_interrupt is not None:
-                    raise  # the second one: abandon the call
-                first_interrupt = error
-        if first_interrupt is not None:
-            raise first_interrupt
+        if pending is not None:
+            raise pending
         if self._error is not None:
             raise self._error
         assert self._result is not None
