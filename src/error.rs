@@ -37,6 +37,18 @@ pub enum Error {
     Internal(String),
 }
 
+impl Error {
+    /// The internal error for a caught panic, with the panic's message.
+    pub fn from_panic(payload: Box<dyn std::any::Any + Send>) -> Error {
+        let why = payload
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| payload.downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "panic".into());
+        Error::Internal(why)
+    }
+}
+
 impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {

@@ -135,12 +135,7 @@ fn guarded(body: impl FnOnce() -> Result<(), Error>) -> c_int {
             1
         }
         Err(panic) => {
-            let why = panic
-                .downcast_ref::<&str>()
-                .map(|s| s.to_string())
-                .or_else(|| panic.downcast_ref::<String>().cloned())
-                .unwrap_or_else(|| "panic".into());
-            set_last_error(&Error::Internal(why).to_string());
+            set_last_error(&Error::from_panic(panic).to_string());
             2
         }
     }

@@ -75,7 +75,9 @@ fn delaunay_with<P: Predicates>(options: &Options, mut points: Vec<Point>) -> Tr
 }
 
 /// Triangulates `input` as the switches in `options` ask. The safe entry point of the engine:
-/// the C ABI, the command-line program and Rust callers all come through here.
+/// the C ABI, the command-line program and Rust callers all come through here. A failed internal
+/// invariant is an [`Error::Internal`], not a panic: the algorithms report the ones they check,
+/// and any other panic (an index out of range: a bug) is caught here when panics unwind.
 pub fn triangulate(
     options: &Options,
     input: &Input<'_>,
@@ -83,11 +85,16 @@ pub fn triangulate(
 ) -> Result<(Output, VoronoiOutput), Error> {
     check_supported(options)?;
     let points = checked_points(input)?;
-    if options.no_exact {
-        run::<Inexact>(options, input, hooks, points)
-    } else {
-        run::<Exact>(options, input, hooks, points)
-    }
+    // AssertUnwindSafe: after a panic nothing of the run is used again; the caller's data is
+    // only read, and the user test is called, never kept.
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        if options.no_exact {
+            run::<Inexact>(options, input, hooks, points)
+        } else {
+            run::<Exact>(options, input, hooks, points)
+        }
+    }))
+    .unwrap_or_else(|panic| Err(Error::from_panic(panic)))
 }
 
 /// The mesh after every algorithm ran, with what the outputs need to know about it.
@@ -147,7 +154,7 @@ fn run<P: Predicates>(
         let mut cdt = Constrainer::new(Inserter::<P>::new(std::mem::take(&mut meshed.mesh)));
         cdt.split_segments = options.split_segments;
         if options.pslg {
-            insert_segments(&mut cdt, input, &duplicate_of, base, &mut output.warnings);
+            insert_segments(&mut cdt, input, &duplicate_of, base, &mut output.warnings)?;
         }
         if options.convex_hull || options.refine || !options.pslg {
             // `c`, the boundary of a mesh being refined (`r`), or refinement of a point set: the
@@ -251,7 +258,7 @@ fn insert_segments<P: Predicates>(
     duplicate_of: &[u32],
     base: i32,
     warnings: &mut Vec<String>,
-) {
+) -> Result<(), Error> {
     let n = input.point_count() as i64;
     let mut inserted: std::collections::HashMap<(u32, u32), u32> = std::collections::HashMap::new();
     for (i, s) in input.segments.chunks_exact(2).enumerate() {
@@ -292,8 +299,9 @@ fn insert_segments<P: Predicates>(
         }
         let id = cdt.new_segment_id(marker, a, b);
         inserted.insert((a.min(b), a.max(b)), id);
-        cdt.insert_segment(a, b, id);
+        cdt.insert_segment(a, b, id)?;
     }
+    Ok(())
 }
 
 fn write_outputs(

@@ -22,6 +22,7 @@
 use std::collections::{HashSet, VecDeque};
 
 use crate::algorithms::delaunay::{Inserter, Location};
+use crate::error::Error;
 use crate::geometry::{Point, Predicates};
 use crate::mesh::{next, prev, triangle_of, Mesh, GHOST, NONE};
 
@@ -179,8 +180,9 @@ impl<P: Predicates> Constrainer<P> {
     }
 
     /// Inserts the segment from vertex `a` to vertex `b` with id `id` (from
-    /// [`Self::new_segment_id`]). Both must be vertices of the triangulation.
-    pub fn insert_segment(&mut self, a: u32, b: u32, id: u32) {
+    /// [`Self::new_segment_id`]). Both must be vertices of the triangulation. An `Err` is an
+    /// internal invariant failure (a bug), reported instead of a panic.
+    pub fn insert_segment(&mut self, a: u32, b: u32, id: u32) -> Result<(), Error> {
         let mut work = std::mem::take(&mut self.scratch.work);
         work.clear();
         work.push((a, b, id));
@@ -191,7 +193,7 @@ impl<P: Predicates> Constrainer<P> {
             if a == b {
                 continue;
             }
-            match self.walk(a, b) {
+            match self.walk(a, b)? {
                 Walk::Along(e) => {
                     let mesh = &mut self.inserter.mesh;
                     let c = mesh.dest(e);
@@ -234,7 +236,7 @@ impl<P: Predicates> Constrainer<P> {
                                     .iter()
                                     .map(|&h| (mesh.origin(h), mesh.dest(h)))
                                     .collect();
-                                self.remove_crossings(a, stop, crossed, id);
+                                self.remove_crossings(a, stop, crossed, id)?;
                             }
                         }
                     }
@@ -285,6 +287,7 @@ impl<P: Predicates> Constrainer<P> {
             }
         }
         self.scratch.work = work;
+        Ok(())
     }
 
     /// After inserting a vertex at a rounded position (a crossing, a midpoint), which may lie
@@ -334,7 +337,7 @@ impl<P: Predicates> Constrainer<P> {
     }
 
     /// Walks from `a` toward `b`; the edges crossed are left in `self.scratch.crossed`.
-    fn walk(&mut self, a: u32, b: u32) -> Walk {
+    fn walk(&mut self, a: u32, b: u32) -> Result<Walk, Error> {
         self.scratch.crossed.clear();
         let mesh = &self.inserter.mesh;
         let (pa, pb) = (self.pt(a), self.pt(b));
@@ -351,10 +354,10 @@ impl<P: Predicates> Constrainer<P> {
                         && along(pu, pw, pv)
                         && before(pu, pw, pv)
                 };
-                return match self.flip_edge_onto_vertex(e, beside) {
+                return Ok(match self.flip_edge_onto_vertex(e, beside) {
                     Some(w) => Walk::Through(w),
                     None => Walk::Along(e),
-                };
+                });
             }
             e = mesh.twin(prev(e));
             if e == start {
@@ -374,7 +377,7 @@ impl<P: Predicates> Constrainer<P> {
                     P::orient2d(pa, self.pt(x), pb)
                 };
                 if on_line(ox, pa, pb) && along(pa, self.pt(x), pb) && before(pa, self.pt(x), pb) {
-                    return Walk::Along(e);
+                    return Ok(Walk::Along(e));
                 }
                 if y != GHOST && ox > 0.0 {
                     let py = self.pt(y);
@@ -393,14 +396,20 @@ impl<P: Predicates> Constrainer<P> {
                 }
             }
             e = mesh.twin(prev(e));
-            assert!(e != start, "no triangle around vertex {a} faces vertex {b}");
+            if e == start {
+                return Err(Error::Internal(format!(
+                    "segment insertion: no triangle around vertex {a} faces vertex {b}"
+                )));
+            }
         }
         // Cross edges until a vertex on the segment is reached.
         debug_assert!(mesh.origin(next(e)) == right && mesh.dest(next(e)) == left);
-        match cross_edges::<P>(mesh, pa, pb, next(e), true, &mut self.scratch.crossed) {
-            Ok(z) => Walk::Crosses(z),
-            Err(h) => Walk::HitsSegment(h),
-        }
+        Ok(
+            match cross_edges::<P>(mesh, pa, pb, next(e), true, &mut self.scratch.crossed) {
+                Ok(z) => Walk::Crosses(z),
+                Err(h) => Walk::HitsSegment(h),
+            },
+        )
     }
 
     /// If the vertex beside the edge of `e` on either side lies on it as far as `on_edge(u, v,
@@ -698,13 +707,22 @@ impl<P: Predicates> Constrainer<P> {
 
     /// Removes the edges crossing the new segment `a`–`b` by Sloan's flips, marks the recovered
     /// edge as segment `id`, then restores the constrained Delaunay property around the new edges.
-    fn remove_crossings(&mut self, a: u32, b: u32, crossed: Vec<(u32, u32)>, id: u32) {
+    fn remove_crossings(
+        &mut self,
+        a: u32,
+        b: u32,
+        crossed: Vec<(u32, u32)>,
+        id: u32,
+    ) -> Result<(), Error> {
+        let lost = |what: &str| Error::Internal(format!("segment recovery by flips: {what}"));
         let mut queue: VecDeque<(u32, u32)> = crossed.into();
         let mut new_edges = Vec::new();
         let mut stalls = 0usize;
         while let Some((u, v)) = queue.pop_front() {
             let mesh = &self.inserter.mesh;
-            let e = mesh.find_edge(u, v).expect("crossing edge exists");
+            let e = mesh
+                .find_edge(u, v)
+                .ok_or_else(|| lost("a crossing edge is gone"))?;
             let f = mesh.twin(e);
             let (p, q) = (mesh.apex(e), mesh.apex(f));
             // The quadrilateral u, q, v, p is strictly convex when p–q crosses u–v.
@@ -712,10 +730,9 @@ impl<P: Predicates> Constrainer<P> {
             if !convex {
                 queue.push_back((u, v));
                 stalls += 1;
-                assert!(
-                    stalls <= 4 * queue.len() * queue.len() + 16,
-                    "segment recovery made no progress"
-                );
+                if stalls > 4 * queue.len() * queue.len() + 16 {
+                    return Err(lost("no progress"));
+                }
                 continue;
             }
             stalls = 0;
@@ -734,9 +751,10 @@ impl<P: Predicates> Constrainer<P> {
             .inserter
             .mesh
             .find_edge(a, b)
-            .expect("segment recovered by flips");
+            .ok_or_else(|| lost("the segment is not an edge afterwards"))?;
         self.inserter.mesh.set_segment(e, id);
         self.restore_delaunay(new_edges);
+        Ok(())
     }
 
     /// Lawson flips from the given edges until every non-segment edge is locally Delaunay.
@@ -910,7 +928,7 @@ mod tests {
                     .filter(|&e| m.is_segment(e))
                     .map(|e| (m.origin(e), m.dest(e)))
                     .collect();
-                cdt.insert_segment(a, b, id);
+                cdt.insert_segment(a, b, id).unwrap();
                 let m = &cdt.inserter.mesh;
                 m.check_topology()
                     .unwrap_or_else(|e| panic!("seed {seed}: {e}"));
@@ -974,7 +992,7 @@ mod tests {
             for (k, &i) in order.iter().enumerate() {
                 let (a, b) = (i, (i + 1) % n as u32);
                 let id = cdt.new_segment_id(1, a, b);
-                cdt.insert_segment(a, b, id);
+                cdt.insert_segment(a, b, id).unwrap();
                 if k % 50 == 0 || k + 1 == n {
                     let m = &cdt.inserter.mesh;
                     m.check_topology()
