@@ -114,10 +114,53 @@ pub struct VoronoiDiagram {
 /// `true` means the triangle is unsuitable and must be split.
 pub type UnsuitableFn<'a> = dyn Fn(f64, f64, f64, f64, f64, f64, f64) -> bool + Sync + 'a;
 
+/// A phase of a call, in the order they run (the numbers are the C ABI's).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Phase {
+    /// Building the Delaunay triangulation of the vertices (or the mesh given with `r`).
+    Delaunay = 0,
+    /// Inserting segments (`p`, `c`).
+    Segments = 1,
+    /// Delaunay refinement (`q`, `a`, `u`, `D`).
+    Refinement = 2,
+    /// Numbering and writing the outputs.
+    Output = 3,
+}
+
+/// What a call reports of its progress: the phase, the work done in it, and an estimate of the
+/// phase's total (0 when unknown). For refinement, the work is the vertices inserted, and the
+/// estimate those plus the bad triangles and encroached segments waiting: it grows as
+/// refinement finds more work, and meets the count at the end.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Progress {
+    pub phase: Phase,
+    pub done: u64,
+    pub estimate: u64,
+}
+
+/// The progress callback: called at the start and end of each phase, and during long phases
+/// where the cancel flag is polled.
+pub type ProgressFn<'a> = dyn Fn(Progress) + Sync + 'a;
+
 /// Per-call hooks: no global state.
 #[derive(Clone, Copy, Default)]
 pub struct Hooks<'a> {
     pub unsuitable: Option<&'a UnsuitableFn<'a>>,
     /// Polled during long work; `true` stops refinement early with a valid mesh.
     pub cancel: Option<&'a (dyn Fn() -> bool + Sync + 'a)>,
+    /// Told of the call's progress (see [`Progress`]).
+    pub progress: Option<&'a ProgressFn<'a>>,
+}
+
+impl Hooks<'_> {
+    /// Reports progress, if the caller asked for it.
+    pub fn report(&self, phase: Phase, done: u64, estimate: u64) {
+        if let Some(progress) = self.progress {
+            progress(Progress {
+                phase,
+                done,
+                estimate,
+            });
+        }
+    }
 }

@@ -12,7 +12,7 @@ use std::os::raw::{c_char, c_int, c_void};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::atomic::{AtomicI32, AtomicPtr, Ordering};
 
-use crate::data::{Hooks, UnsuitableFn};
+use crate::data::{Hooks, Progress, ProgressFn, UnsuitableFn};
 use crate::error::Error;
 use crate::io::triangulateio::{input_from_raw, write_output, TriangulateIO};
 use crate::options::{Options, SwitchSource};
@@ -56,6 +56,7 @@ unsafe fn run(
     vorout: *mut TriangulateIO,
     callback: Option<&UnsuitableFn<'_>>,
     cancel: *const c_int,
+    progress: Option<&ProgressFn<'_>>,
 ) -> Result<(), Error> {
     if switches.is_null() {
         return Err(Error::NullArgument("switches"));
@@ -89,6 +90,7 @@ unsafe fn run(
         let hooks = Hooks {
             unsuitable: callback,
             cancel: Some(&is_cancelled),
+            progress,
         };
         let result = {
             // SAFETY: the arrays of `in` hold as many items as its counts say (C contract).
@@ -175,7 +177,17 @@ pub unsafe extern "C" fn triangulate(
         None
     };
     // SAFETY: the caller's contract is this function's.
-    guarded(|| unsafe { run(switches, r#in, out, vorout, callback_ref, std::ptr::null()) })
+    guarded(|| unsafe {
+        run(
+            switches,
+            r#in,
+            out,
+            vorout,
+            callback_ref,
+            std::ptr::null(),
+            None,
+        )
+    })
 }
 
 /// The same call under the name Triangulate.jl uses (Triangle_jll's setjmp wrapper): 0 on
@@ -225,7 +237,69 @@ pub unsafe extern "C" fn triangulate_reentrant(
         None
     };
     // SAFETY: the caller's contract is this function's.
-    guarded(|| unsafe { run(switches, r#in, out, vorout, callback_ref, cancel) })
+    guarded(|| unsafe { run(switches, r#in, out, vorout, callback_ref, cancel, None) })
+}
+
+/// The progress callback of [`triangulate_progress`]: the phase (0 Delaunay triangulation,
+/// 1 segment insertion, 2 refinement, 3 output), the work done in it and an estimate of its
+/// total (0 when unknown; for refinement: vertices inserted, and those plus the work waiting),
+/// and the call's `user_data`.
+pub type TriangulateProgressFn =
+    unsafe extern "C" fn(phase: c_int, done: i64, estimate: i64, user_data: *mut c_void);
+
+/// As [`triangulate_reentrant`], and `progress` (may be NULL) is told of the call's progress:
+/// at the start and end of each phase, and during refinement where the cancel flag is polled
+/// (every 1024 steps). Called on the calling thread with `user_data`, never after the return.
+///
+/// # Safety
+/// As [`triangulate_reentrant`]; `progress` may be called from this thread only.
+#[no_mangle]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn triangulate_progress(
+    switches: *const c_char,
+    r#in: *mut TriangulateIO,
+    out: *mut TriangulateIO,
+    vorout: *mut TriangulateIO,
+    unsuitable: Option<TriunsuitableUserFn>,
+    user_data: *mut c_void,
+    cancel: *const c_int,
+    progress: Option<TriangulateProgressFn>,
+) -> c_int {
+    let data = UserData(user_data);
+    let test = move |ox, oy, dx, dy, ax, ay, area| {
+        let data = data;
+        unsuitable.is_some_and(|f| f(ox, oy, dx, dy, ax, ay, area, data.0) != 0)
+    };
+    let callback_ref: Option<&UnsuitableFn<'_>> = if unsuitable.is_some() {
+        Some(&test)
+    } else {
+        None
+    };
+    let report = move |p: Progress| {
+        let data = data;
+        if let Some(f) = progress {
+            let clamp = |v: u64| v.min(i64::MAX as u64) as i64;
+            // SAFETY: the caller's function pointer, called as its contract says.
+            unsafe { f(p.phase as c_int, clamp(p.done), clamp(p.estimate), data.0) }
+        }
+    };
+    let progress_ref: Option<&ProgressFn<'_>> = if progress.is_some() {
+        Some(&report)
+    } else {
+        None
+    };
+    // SAFETY: the caller's contract is this function's.
+    guarded(|| unsafe {
+        run(
+            switches,
+            r#in,
+            out,
+            vorout,
+            callback_ref,
+            cancel,
+            progress_ref,
+        )
+    })
 }
 
 /// Frees an array that `triangulate` allocated (libc `free`). NULL is ignored.

@@ -21,7 +21,7 @@ pub mod mesh;
 pub mod options;
 pub mod pipeline;
 
-pub use data::{Hooks, Input, Output, VoronoiDiagram, VoronoiOutput};
+pub use data::{Hooks, Input, Output, Phase, Progress, VoronoiDiagram, VoronoiOutput};
 pub use error::Error;
 pub use options::{Options, SwitchSource};
 pub use pipeline::triangulate;

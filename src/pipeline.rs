@@ -8,7 +8,7 @@ use crate::algorithms::reconstruct::reconstruct;
 use crate::algorithms::refine::{Quality, Refiner, VertexKind};
 use crate::algorithms::voronoi::{voronoi_diagram, DualOf};
 use crate::assemble::FinishedMesh;
-use crate::data::{Hooks, Input, Output, VoronoiOutput};
+use crate::data::{Hooks, Input, Output, Phase, VoronoiOutput};
 use crate::error::Error;
 use crate::geometry::{Exact, Inexact, Point, Predicates};
 use crate::mesh::{Mesh, GHOST, NONE, OUTSIDE};
@@ -118,6 +118,7 @@ fn run<P: Predicates>(
     let n = points.len();
     let mut output = Output::default();
     let base = options.first_index();
+    hooks.report(Phase::Delaunay, 0, n as u64);
     // The starting mesh: the given triangles (`r`), or the Delaunay triangulation of the points.
     let (mesh, duplicate_of) = if options.refine {
         let mesh = reconstruct::<P>(points, input.triangles, input.corners, base)?;
@@ -138,6 +139,7 @@ fn run<P: Predicates>(
         }
         (mesh, duplicate_of)
     };
+    hooks.report(Phase::Delaunay, n as u64, n as u64);
     let k = input.point_attribute_count;
     let mut meshed = Meshed {
         point_attributes: input.point_attributes.to_vec(),
@@ -154,7 +156,14 @@ fn run<P: Predicates>(
         let mut cdt = Constrainer::new(Inserter::<P>::new(std::mem::take(&mut meshed.mesh)));
         cdt.split_segments = options.split_segments;
         if options.pslg {
-            insert_segments(&mut cdt, input, &duplicate_of, base, &mut output.warnings)?;
+            insert_segments(
+                &mut cdt,
+                input,
+                &duplicate_of,
+                base,
+                hooks,
+                &mut output.warnings,
+            )?;
         }
         if options.convex_hull || options.refine || !options.pslg {
             // `c`, the boundary of a mesh being refined (`r`), or refinement of a point set: the
@@ -216,6 +225,7 @@ fn run<P: Predicates>(
                 no_steiner_on_segments: options.no_steiner_on_segments,
                 max_steiner: options.max_steiner,
                 cancel: hooks.cancel,
+                progress: hooks.progress,
             };
             let kinds = vec![VertexKind::Input; cdt.inserter.mesh.points.len()];
             let refiner = Refiner::new(
@@ -227,7 +237,14 @@ fn run<P: Predicates>(
                 &mut meshed.point_attributes,
                 k,
             );
-            output.warnings.extend(refiner.run().warnings);
+            hooks.report(Phase::Refinement, 0, 0);
+            let report = refiner.run();
+            hooks.report(
+                Phase::Refinement,
+                report.steiner_points,
+                report.steiner_points,
+            );
+            output.warnings.extend(report.warnings);
         }
         meshed.segment_markers = std::mem::take(&mut cdt.markers);
         meshed.mesh = cdt.inserter.mesh;
@@ -244,7 +261,11 @@ fn run<P: Predicates>(
         output.hole_count = input.hole_count();
         output.region_count = input.region_count();
     }
-    Ok(write_outputs(options, input, &meshed, output))
+    let triangles = meshed.mesh.triangle_count() as u64;
+    hooks.report(Phase::Output, 0, triangles);
+    let outputs = write_outputs(options, input, &meshed, output);
+    hooks.report(Phase::Output, triangles, triangles);
+    Ok(outputs)
 }
 
 /// Inserts the input segments (skipping those with a bad or repeated endpoint, with a warning).
@@ -257,9 +278,12 @@ fn insert_segments<P: Predicates>(
     input: &Input<'_>,
     duplicate_of: &[u32],
     base: i32,
+    hooks: &Hooks<'_>,
     warnings: &mut Vec<String>,
 ) -> Result<(), Error> {
     let n = input.point_count() as i64;
+    let m = (input.segments.len() / 2) as u64;
+    hooks.report(Phase::Segments, 0, m);
     let mut inserted: std::collections::HashMap<(u32, u32), u32> = std::collections::HashMap::new();
     for (i, s) in input.segments.chunks_exact(2).enumerate() {
         let marker = input.segment_markers.map_or(0, |m| m[i]);
@@ -300,7 +324,11 @@ fn insert_segments<P: Predicates>(
         let id = cdt.new_segment_id(marker, a, b);
         inserted.insert((a.min(b), a.max(b)), id);
         cdt.insert_segment(a, b, id)?;
+        if i % 4096 == 4095 {
+            hooks.report(Phase::Segments, i as u64 + 1, m);
+        }
     }
+    hooks.report(Phase::Segments, m, m);
     Ok(())
 }
 

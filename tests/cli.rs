@@ -350,6 +350,18 @@ fn statistics_with_v_and_silence_with_q() {
             verbose.stdout
         );
     }
+    // The phases go to stderr as they run, with their counts.
+    for text in [
+        "Delaunay triangulation: 0 of 14 vertices",
+        "Delaunay triangulation: 14 of 14 vertices",
+        "output:",
+    ] {
+        assert!(
+            verbose.stderr.contains(text),
+            "-V progress lacks `{text}`:\n{}",
+            verbose.stderr
+        );
+    }
     // The triangle count printed is the one written.
     let ele = files::read_ele(&dir.read("dots.1.ele"), "e").unwrap();
     assert!(verbose

@@ -402,7 +402,7 @@ fn the_user_test_through_hooks() {
     };
     let hooks = Hooks {
         unsuitable: Some(&test),
-        cancel: None,
+        ..Hooks::default()
     };
     for pslg in random_polygons() {
         let unrefined = ours("pzQ", &pslg.input).unwrap();
@@ -623,8 +623,8 @@ fn the_cancel_hook_set_from_another_thread_stops_refinement() {
     let (out, warnings) = within(20, move || {
         let is_cancelled = move || flag.load(Ordering::Relaxed);
         let hooks = Hooks {
-            unsuitable: None,
             cancel: Some(&is_cancelled),
+            ..Hooks::default()
         };
         engine(ENDLESS, &input, &hooks)
     })

@@ -186,7 +186,7 @@ class StallingLibrary:
     def __init__(self):
         self.saw_cancel = False
 
-    def triangulate(self, switches, tin, tout, vorout, unsuitable, cancel):
+    def triangulate(self, switches, tin, tout, vorout, unsuitable, cancel, progress=None):
         os.kill(os.getpid(), signal.SIGINT)
         for _ in range(3000):
             if cancel.value:
@@ -218,7 +218,7 @@ class SlowToStopLibrary:
         self.saw_cancel = False
         self.returned = False
 
-    def triangulate(self, switches, tin, tout, vorout, unsuitable, cancel):
+    def triangulate(self, switches, tin, tout, vorout, unsuitable, cancel, progress=None):
         for number in self.signals:
             os.kill(os.getpid(), number)
             time.sleep(0.05)
@@ -283,7 +283,7 @@ class RecordingLibrary:
         self.path = self.real.path
         self.allocated, self.freed, self.aliased = [], [], []
 
-    def triangulate(self, switches, tin, tout, vorout, unsuitable, cancel):
+    def triangulate(self, switches, tin, tout, vorout, unsuitable, cancel, progress=None):
         result = self.real.triangulate(switches, tin, tout, vorout, unsuitable, cancel)
         for struct in (tout, vorout):
             for name in FIELDS:

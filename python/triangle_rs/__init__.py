@@ -26,7 +26,7 @@ import numpy as np
 from . import compat, core
 from ._library import ENVIRONMENT_VARIABLE, Library, load_library
 from .compat import convex_hull, delaunay, voronoi
-from .core import TriangulateError, Unsuitable
+from .core import Progress, TriangulateError, Unsuitable
 from .data import get_data, load, loads, show_data
 from .meshing import MeshResult, mesh, mesh_switches
 from .meshio_io import to_meshio
@@ -41,6 +41,7 @@ __all__ = [
     "MeshResult",
     "TriangulateError",
     "TriangulateIO",
+    "Progress",
     "Unsuitable",
     "compare",
     "comparev",
@@ -68,13 +69,21 @@ __all__ = [
 
 @overload
 def triangulate(
-    switches: str, tio: TriangulateIO, *, unsuitable: Optional[Unsuitable] = None
+    switches: str,
+    tio: TriangulateIO,
+    *,
+    unsuitable: Optional[Unsuitable] = None,
+    progress: "Progress | bool | None" = None,
 ) -> tuple[TriangulateIO, TriangulateIO]: ...
 
 
 @overload
 def triangulate(
-    tri: Mapping[str, Any], opts: str = "", *, unsuitable: Optional[Unsuitable] = None
+    tri: Mapping[str, Any],
+    opts: str = "",
+    *,
+    unsuitable: Optional[Unsuitable] = None,
+    progress: "Progress | bool | None" = None,
 ) -> dict[str, np.ndarray]: ...
 
 
@@ -83,6 +92,7 @@ def triangulate(
     second: Union[TriangulateIO, str] = "",
     *,
     unsuitable: Optional[Unsuitable] = None,
+    progress: "Progress | bool | None" = None,
 ) -> Union[tuple[TriangulateIO, TriangulateIO], dict[str, np.ndarray]]:
     """Triangulates in either style, chosen by the arguments:
 
@@ -92,11 +102,13 @@ def triangulate(
       (see :func:`triangle_rs.compat.triangulate`).
 
     ``unsuitable(x1, y1, x2, y2, x3, y3, area) -> bool`` is the per-call test of switch ``u``.
+    ``progress=True`` shows a progress bar (tqdm when installed); a callable
+    ``progress(phase, done, estimate)`` is told of the call's progress instead.
     """
     if isinstance(first, str) and isinstance(second, TriangulateIO):
-        return core.triangulate(first, second, unsuitable=unsuitable)
+        return core.triangulate(first, second, unsuitable=unsuitable, progress=progress)
     if isinstance(first, Mapping) and isinstance(second, str):
-        return compat.triangulate(first, second, unsuitable=unsuitable)
+        return compat.triangulate(first, second, unsuitable=unsuitable, progress=progress)
     raise TypeError(
         "triangulate takes (switches: str, tio: TriangulateIO) or (tri: dict, opts: str = ''), "
         f"got ({type(first).__name__}, {type(second).__name__})"

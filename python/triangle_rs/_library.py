@@ -72,6 +72,10 @@ UnsuitableCallback = ctypes.CFUNCTYPE(
     ctypes.c_void_p,
 )
 
+#: ``void (*)(int phase, int64_t done, int64_t estimate, void *user_data)``: the progress report
+#: of ``triangulate_progress`` (phase 0 Delaunay, 1 segments, 2 refinement, 3 output).
+ProgressCallback = ctypes.CFUNCTYPE(None, ctypes.c_int, ctypes.c_int64, ctypes.c_int64, ctypes.c_void_p)
+
 _IO_POINTER = ctypes.POINTER(CTriangulateIO)
 
 
@@ -104,6 +108,11 @@ class Library:
             ctypes.POINTER(ctypes.c_int),
         ]
         reentrant.restype = ctypes.c_int
+        # `triangulate_progress` (reentrant, with progress reports); absent from older builds.
+        self._progress = getattr(self._cdll, "triangulate_progress", None)
+        if self._progress is not None:
+            self._progress.argtypes = reentrant.argtypes + [ProgressCallback]
+            self._progress.restype = ctypes.c_int
         last_error.argtypes = []
         last_error.restype = ctypes.c_char_p
         trifree.argtypes = [ctypes.c_void_p]
@@ -120,14 +129,16 @@ class Library:
         vorout: CTriangulateIO,
         unsuitable: "ctypes._CFuncPtr | None",
         cancel: ctypes.c_int,
+        progress: "ctypes._CFuncPtr | None" = None,
     ) -> tuple[int, str]:
-        """Runs ``triangulate_reentrant``; returns its code and, on failure, the message.
+        """Runs ``triangulate_reentrant`` (``triangulate_progress`` with a ``progress``
+        callback); returns its code and, on failure, the message.
 
         The message is read on the calling thread right after the call, because the library
         keeps it per thread.
         """
         callback = unsuitable if unsuitable is not None else UnsuitableCallback()
-        code = self._reentrant(
+        arguments = (
             switches,
             ctypes.byref(tin),
             ctypes.byref(tout),
@@ -136,6 +147,12 @@ class Library:
             None,
             ctypes.byref(cancel),
         )
+        if progress is not None:
+            if self._progress is None:
+                raise OSError(f"{self.path} has no triangulate_progress: rebuild the library")
+            code = self._progress(*arguments, progress)
+        else:
+            code = self._reentrant(*arguments)
         if code == 0:
             return 0, ""
         message = self._last_error()

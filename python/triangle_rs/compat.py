@@ -8,7 +8,7 @@ from typing import Any, Mapping, Optional
 
 import numpy as np
 
-from .core import Unsuitable, run
+from .core import Progress, Unsuitable, run
 from .triangulateio import FIELDS, TriangulateIO
 
 #: The PyPI package's dictionary keys for the C struct's fields.
@@ -53,7 +53,13 @@ def from_dict(tri: Mapping[str, Any]) -> TriangulateIO:
     return TriangulateIO(**fields)
 
 
-def triangulate(tri: Mapping[str, Any], opts: str = "", *, unsuitable: Optional[Unsuitable] = None) -> dict[str, np.ndarray]:
+def triangulate(
+    tri: Mapping[str, Any],
+    opts: str = "",
+    *,
+    unsuitable: Optional[Unsuitable] = None,
+    progress: "Progress | bool | None" = None,
+) -> dict[str, np.ndarray]:
     """Triangulates the dictionary ``tri`` with Triangle's switches ``opts``, as the PyPI
     ``triangle`` package does (``Q`` and ``z`` are always added).
 
@@ -61,7 +67,8 @@ def triangulate(tri: Mapping[str, Any], opts: str = "", *, unsuitable: Optional[
     ``segment_markers``, ``holes`` (h, 2), ``regions`` (r, 4: x, y, attribute, max area),
     ``triangles`` and ``triangle_attributes``/``triangle_max_area`` (for ``r``). The result has the
     same keys plus ``neighbors`` (``n``) and ``edges``/``edge_markers`` (``e``).
-    ``unsuitable`` (an extension) is the per-call test of switch ``u``.
+    ``unsuitable`` (an extension) is the per-call test of switch ``u``; ``progress=True`` (an
+    extension) shows a progress bar, and a callable ``progress(phase, done, estimate)`` is told.
 
     >>> out = triangulate({'vertices': [[0, 0], [0, 1], [1, 1], [1, 0]]})
     >>> sorted(out), out['triangles'].shape, out['vertex_markers'].shape
@@ -72,7 +79,7 @@ def triangulate(tri: Mapping[str, Any], opts: str = "", *, unsuitable: Optional[
     if unsuitable is not None and "u" not in opts:
         raise ValueError("an unsuitable callback is used only with the switch 'u': add it to opts")
     tio = from_dict(tri)
-    out, _ = run("Qz" + opts, tio, unsuitable=unsuitable)
+    out, _ = run("Qz" + opts, tio, unsuitable=unsuitable, progress=progress)
     return to_dict(select_outputs(out, tio, opts))
 
 

@@ -7,12 +7,20 @@ import ctypes
 import threading
 from typing import Callable, Optional
 
-from ._library import CTriangulateIO, Library, UnsuitableCallback, load_library
+from ._library import CTriangulateIO, Library, ProgressCallback, UnsuitableCallback, load_library
 from .triangulateio import TriangulateIO, free_c, from_c, to_c
 
 #: ``unsuitable(x1, y1, x2, y2, x3, y3, area) -> bool``: the corners of a triangle (counter-
 #: clockwise) and its area; ``True`` asks for the triangle to be split (switch ``u``).
 Unsuitable = Callable[[float, float, float, float, float, float, float], bool]
+
+#: ``progress(phase, done, estimate)``: told of a call's progress; ``phase`` is one of
+#: :data:`PHASES`, ``estimate`` is 0 when unknown (for refinement: the vertices inserted plus the
+#: work waiting, which grows as refinement finds more). ``progress=True`` shows a bar instead.
+Progress = Callable[[str, int, int], None]
+
+#: The phases of a call, in the order they run.
+PHASES = ("delaunay", "segments", "refinement", "output")
 
 # Starting the worker thread that makes a call interruptible costs about a millisecond, more than
 # a small triangulation takes. So only calls that can run long use it: those that refine (the
@@ -44,6 +52,7 @@ def triangulate(
     tio: TriangulateIO,
     *,
     unsuitable: Optional[Unsuitable] = None,
+    progress: "Progress | bool | None" = None,
 ) -> tuple[TriangulateIO, TriangulateIO]:
     """Triangulates, meshes or refines ``tio`` as Triangle does with ``switches``.
 
@@ -59,6 +68,10 @@ def triangulate(
     are refused. The GIL is released while the library works. Ctrl-C (KeyboardInterrupt), or any
     exception raised while the call runs, asks the library to stop refining and is re-raised once
     it has returned.
+
+    ``progress=True`` shows a progress bar on stderr (tqdm when it is installed, a plain line
+    otherwise); a callable ``progress(phase, done, estimate)`` is told instead (see
+    :data:`Progress`).
     """
     if not isinstance(switches, str):
         raise TypeError(f"switches must be a str, got {type(switches).__name__}")
@@ -66,7 +79,7 @@ def triangulate(
         raise TypeError(f"tio must be a TriangulateIO, got {type(tio).__name__}")
     if unsuitable is not None and "u" not in switches:
         raise ValueError("an unsuitable callback is used only with the switch 'u': add it to the switches")
-    return run(switches + "z", tio, unsuitable=unsuitable)
+    return run(switches + "z", tio, unsuitable=unsuitable, progress=progress)
 
 
 def encode_switches(switches: str) -> bytes:
@@ -85,6 +98,7 @@ def run(
     *,
     unsuitable: Optional[Unsuitable] = None,
     library: Optional[Library] = None,
+    progress: "Progress | bool | None" = None,
 ) -> tuple[TriangulateIO, TriangulateIO]:
     """The raw call: ``switches`` exactly as given (no ``z`` added). Every API ends here."""
     lib = library if library is not None else load_library()
@@ -94,10 +108,13 @@ def run(
     cancel = ctypes.c_int(0)
     callback_errors: list[BaseException] = []
     c_callback = _wrap_unsuitable(unsuitable, cancel, callback_errors) if unsuitable is not None else None
+    display = _ProgressDisplay() if progress is True else None
+    report = display.update if display is not None else (progress or None)
+    c_progress = _wrap_progress(report, cancel, callback_errors) if report is not None else None
 
     def call(_inputs: list = keep_alive) -> tuple[int, str]:
         # `_inputs` holds the input arrays as long as the library may read them.
-        return lib.triangulate(encoded, c_in, c_out, c_vorout, c_callback, cancel)
+        return lib.triangulate(encoded, c_in, c_out, c_vorout, c_callback, cancel, c_progress)
 
     may_run_long = bool(_REFINING_SWITCHES & set(switches)) or c_in.numberofpoints >= _LARGE_INPUT_POINTS
     foreign = _ForeignCall(call, interruptible=may_run_long)
@@ -109,6 +126,8 @@ def run(
             raise TriangulateError(message or f"triangulate failed (code {code})", code)
         return from_c(c_out), from_c(c_vorout)
     finally:
+        if display is not None:
+            display.close()
         # `run_interruptibly` returns or raises only once the library is done with the structs.
         if foreign.finished():
             free_c(c_out, lib.free)
@@ -134,6 +153,72 @@ def _wrap_unsuitable(
             return 0
 
     return UnsuitableCallback(trampoline)
+
+
+def _wrap_progress(progress: Progress, cancel: ctypes.c_int, errors: list[BaseException]) -> "ctypes._CFuncPtr":
+    if not callable(progress):
+        raise TypeError("progress must be True or callable as progress(phase, done, estimate)")
+
+    def trampoline(phase: int, done: int, estimate: int, _user_data: int) -> None:
+        # As for the unsuitable test: an exception stops the call and is re-raised by `run`.
+        if errors:
+            return
+        try:
+            progress(PHASES[phase] if 0 <= phase < len(PHASES) else str(phase), done, estimate)
+        except BaseException as error:  # noqa: BLE001 - re-raised by `run`
+            errors.append(error)
+            cancel.value = 1
+
+    return ProgressCallback(trampoline)
+
+
+class _ProgressDisplay:
+    """``progress=True``: one tqdm bar per phase when tqdm is installed, else a line on stderr
+    rewritten in place (at most ten times a second)."""
+
+    def __init__(self) -> None:
+        try:
+            import tqdm  # noqa: F401 - optional
+
+            self._tqdm = tqdm.tqdm
+        except ImportError:
+            self._tqdm = None
+        self._bar = None
+        self._phase: Optional[str] = None
+        self._shown = 0.0
+
+    def update(self, phase: str, done: int, estimate: int) -> None:
+        import sys
+        import time
+
+        if self._tqdm is not None:
+            if phase != self._phase:
+                self.close()
+                self._bar = self._tqdm(total=estimate or None, desc=phase, unit=" items", leave=False)
+                self._phase = phase
+            bar = self._bar
+            bar.total = max(estimate, done) or None
+            bar.n = done
+            bar.refresh()
+            return
+        now = time.monotonic()
+        if phase == self._phase and now - self._shown < 0.1 and done != estimate:
+            return
+        self._phase, self._shown = phase, now
+        total = f" of about {estimate}" if phase == "refinement" else f" of {estimate}"
+        sys.stderr.write(f"\rtriangle-rs: {phase}: {done}{total if estimate else ''}\033[K")
+        sys.stderr.flush()
+
+    def close(self) -> None:
+        import sys
+
+        if self._bar is not None:
+            self._bar.close()
+            self._bar = None
+        elif self._tqdm is None and self._phase is not None:
+            sys.stderr.write("\n")
+            sys.stderr.flush()
+            self._phase = None
 
 
 class _ForeignCall:

@@ -25,7 +25,7 @@ use std::collections::{HashSet, VecDeque};
 use crate::algorithms::constrain::{along, before, Constrainer};
 use crate::algorithms::delaunay::Location;
 use crate::algorithms::domain::Domain;
-use crate::data::UnsuitableFn;
+use crate::data::{Phase, Progress, ProgressFn, UnsuitableFn};
 use crate::geometry::{circumcenter, Point, Predicates};
 use crate::mesh::{next, prev, triangle_of, GHOST, NONE, OUTSIDE};
 
@@ -62,6 +62,8 @@ pub struct Quality<'a> {
     pub max_steiner: Option<u64>,
     /// Polled now and then; `true` stops refinement with a valid mesh.
     pub cancel: Option<&'a (dyn Fn() -> bool + Sync + 'a)>,
+    /// Told of the work done and waiting where `cancel` is polled.
+    pub progress: Option<&'a ProgressFn<'a>>,
 }
 
 /// How a vertex came to be: it decides where segments next to it are split.
@@ -142,6 +144,9 @@ impl BadQueue {
     fn clear(&mut self) {
         self.buckets.iter_mut().for_each(VecDeque::clear);
         self.top = 0;
+    }
+    fn len(&self) -> usize {
+        self.buckets.iter().map(VecDeque::len).sum()
     }
     fn is_empty(&self) -> bool {
         self.buckets.iter().all(VecDeque::is_empty)
@@ -563,6 +568,17 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
             return true;
         }
         self.polls = self.polls.wrapping_add(1);
+        if self.polls % 1024 == 0 {
+            if let Some(progress) = self.quality.progress {
+                let done = self.report.steiner_points;
+                let waiting = self.bad.len() + self.encroached.len();
+                progress(Progress {
+                    phase: Phase::Refinement,
+                    done,
+                    estimate: done + waiting as u64,
+                });
+            }
+        }
         if self.polls % 64 == 0 && self.quality.cancel.is_some_and(|cancelled| cancelled()) {
             self.report
                 .warnings

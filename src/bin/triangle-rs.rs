@@ -11,7 +11,7 @@ use std::io::{self, BufWriter};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use triangle_rs::data::{Hooks, Input, Output, VoronoiOutput};
+use triangle_rs::data::{Hooks, Input, Output, Phase, Progress, ProgressFn, VoronoiOutput};
 use triangle_rs::io::files::{
     self, check_vertex_indices, next_iteration_name, split_input_name, AreaFile, EleData, EleFile,
     FileError, NodeData, NodeFile, PolyData, PolyFile, PolyVertices,
@@ -476,8 +476,28 @@ fn run(args: &[String]) -> Result<(), Failure> {
         no_boundary_markers: false,
         ..options.clone()
     };
-    let (mesh, voronoi) = pipeline::triangulate(&engine_options, &input, &Hooks::default())
-        .map_err(|e| fail(e.to_string()))?;
+    // With `V`, the phases and their counts go to stderr as they run (refinement every so often).
+    let progress = |p: Progress| {
+        let (done, total) = (p.done, p.estimate);
+        match p.phase {
+            Phase::Delaunay => {
+                eprintln!("triangle-rs: Delaunay triangulation: {done} of {total} vertices")
+            }
+            Phase::Segments => {
+                eprintln!("triangle-rs: segment insertion: {done} of {total} segments")
+            }
+            Phase::Refinement => eprintln!(
+                "triangle-rs: refinement: {done} vertices inserted, about {total} in all so far"
+            ),
+            Phase::Output => eprintln!("triangle-rs: output: {done} of {total} triangle slots"),
+        }
+    };
+    let hooks = Hooks {
+        progress: (options.verbose > 0 && !quiet).then_some(&progress as &ProgressFn<'_>),
+        ..Hooks::default()
+    };
+    let (mesh, voronoi) =
+        pipeline::triangulate(&engine_options, &input, &hooks).map_err(|e| fail(e.to_string()))?;
     if !quiet {
         for warning in &mesh.warnings {
             eprintln!("triangle-rs: warning: {warning}");
