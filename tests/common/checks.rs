@@ -867,3 +867,31 @@ pub fn check_point_markers(
     }
     Ok(())
 }
+
+/// `A` without regions: Triangle adds no triangle attribute, we add a column of zeros (the
+/// manual's rule; a documented deviation). Checks that column on `ours` and returns `ours`
+/// without it, for comparison with Triangle's output; other outputs are returned unchanged.
+pub fn without_zero_region_column(
+    ours: &Triangulation,
+    switches: &str,
+    region_count: usize,
+) -> Triangulation {
+    let region_switch = switches.contains('A') && switches.contains('p') && !switches.contains('r');
+    if !region_switch || region_count > 0 {
+        return ours.clone();
+    }
+    assert_eq!(
+        ours.counts.triangle_attributes, 1,
+        "\"{switches}\" without regions: one attribute per triangle"
+    );
+    if let Some(attributes) = &ours.triangle_attributes {
+        assert!(
+            attributes.iter().all(|&a| a == 0.0),
+            "\"{switches}\" without regions: the attributes must be zero"
+        );
+    }
+    let mut stripped = ours.clone();
+    stripped.counts.triangle_attributes = 0;
+    stripped.triangle_attributes = None;
+    stripped
+}
