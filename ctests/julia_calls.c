@@ -845,6 +845,42 @@ static void case_two_points(void) {
     end_case();
 }
 
+/* Issue 12: an index out of range is a TriangulateError, never a silently emptied mesh; `rp`
+   gives back the holes like `p`. */
+static void case_bad_indices_and_rp_holes(void) {
+    begin_case("0-based segments -> TriangulateError naming the segment and the range");
+    JTriangulateIO triin = unit_square(), triout, vorout;
+    triin.segmentlist = jl_adjoint(sizeof(int), jl_int(4, 2, (const int[]){0, 1, 1, 2, 2, 3, 3, 0}));
+    JlResult r = jl_triangulate("pQ", &triin, &triout, &vorout, NULL, NULL);
+    CHECK(r.outcome == JL_TRIANGULATE_ERROR, "outcome %d", r.outcome);
+    CHECK(strstr(r.message, "Segment 1 has endpoint 0") != NULL && strstr(r.message, "numbered 1 to 4") != NULL,
+          "message: %s", r.message);
+    CHECK(jl_isempty(triout.trianglelist), "output after an error");
+    end_case();
+
+    begin_case("rpq keeps the holes of the input (refining a mesh of a square with a hole)");
+    static const double points[] = {0, 0, 4, 0, 4, 4, 0, 4, 1, 1, 3, 1, 3, 3, 1, 3};
+    static const int segments[] = {1, 2, 2, 3, 3, 4, 4, 1, 5, 6, 6, 7, 7, 8, 8, 5};
+    JTriangulateIO square = jl_triangulateio(), mesh, refined, vor2;
+    square.pointlist = jl_adjoint(sizeof(double), jl_f64(8, 2, points));
+    square.segmentlist = jl_adjoint(sizeof(int), jl_int(8, 2, segments));
+    square.holelist = jl_f64(2, 1, (const double[]){2, 2});
+    if (run("pQ", &square, &mesh, &vorout, NULL, NULL)) {
+        CHECK(jl_items(mesh.trianglelist) == 8, "%d triangles", jl_items(mesh.trianglelist));
+        JTriangulateIO again = mesh; /* the output as the next input, with the holes */
+        if (run("rpq30Q", &again, &refined, &vor2, NULL, NULL)) {
+            check_mesh(&refined, 12.0); /* the square less its hole, which the mesh does not cover */
+            CHECK(jl_items(refined.holelist) == 1 && refined.holelist.data == again.holelist.data,
+                  "holelist: %d items", jl_items(refined.holelist));
+        }
+        jl_gc_collect(&refined);
+        jl_gc_collect(&vor2);
+    }
+    jl_gc_collect(&mesh);
+    jl_gc_collect(&vorout);
+    end_case();
+}
+
 static void case_square_neighbors(void) {
     begin_case("unit square pqQn (test_neighbors)");
     JTriangulateIO triin = unit_square(), triout, vorout;
@@ -1208,6 +1244,7 @@ int main(void) {
     case_raw_diamond_paAqQ();
     case_t_shape_pcDQ();
     case_two_points();
+    case_bad_indices_and_rp_holes();
     case_square_neighbors();
     case_square_o2();
     case_point_attributes();

@@ -21,10 +21,23 @@ pub enum Error {
     NonFinite { what: &'static str, index: usize },
     /// A switch that this version does not implement.
     Unsupported(&'static str),
-    /// `r`: a triangle needs at least three corners.
-    TooFewCorners(i64),
-    /// `r`: a triangle refers to a vertex that does not exist.
-    InvalidTriangleVertex { triangle: usize },
+    /// `r`: `numberofcorners` is neither 3 nor 6.
+    BadCorners(i64),
+    /// A segment endpoint or a triangle corner is not a vertex number. `item` is numbered as the
+    /// caller numbers it; `first..=last` is the valid range.
+    IndexOutOfRange {
+        item: &'static str,
+        number: i64,
+        role: &'static str,
+        value: i64,
+        first: i64,
+        last: i64,
+    },
+    /// A region's maximum area is NaN (`item` in the caller's numbering).
+    NanRegionArea { region: i64 },
+    /// The coordinates span more binary orders of magnitude than exact arithmetic allows, even
+    /// after scaling by a power of two (see `crate::scaling`).
+    CoordinateRange(String),
     /// `r`: the given triangles do not form a valid mesh.
     InvalidMesh(String),
     /// The switch string is not valid UTF-8 / ASCII.
@@ -64,15 +77,27 @@ impl fmt::Display for Error {
                 write!(f, "{what} {index} has a coordinate or value that is not finite (NaN or infinity).")
             }
             Error::Unsupported(what) => write!(f, "{what} is not supported yet by triangle-rs."),
-            Error::TooFewCorners(n) => {
+            Error::BadCorners(n) => {
                 write!(
                     f,
-                    "Triangles must have at least 3 vertices (numberofcorners = {n})."
+                    "Triangles must have 3 or 6 vertices (numberofcorners = {n})."
                 )
             }
-            Error::InvalidTriangleVertex { triangle } => {
-                write!(f, "Triangle {triangle} has an invalid vertex index.")
+            Error::IndexOutOfRange {
+                item,
+                number,
+                role,
+                value,
+                first,
+                last,
+            } => write!(
+                f,
+                "{item} {number} has {role} {value}, which is not a vertex: vertices are numbered {first} to {last}."
+            ),
+            Error::NanRegionArea { region } => {
+                write!(f, "Region {region} has a maximum area that is NaN.")
             }
+            Error::CoordinateRange(why) => write!(f, "{why}"),
             Error::InvalidMesh(why) => write!(f, "The input mesh is not valid: {why}"),
             Error::BadSwitches => write!(f, "The switch string is not valid ASCII text."),
             Error::OutOfMemory => write!(f, "Out of memory."),

@@ -20,6 +20,7 @@ pub mod io;
 pub mod mesh;
 pub mod options;
 pub mod pipeline;
+pub mod scaling;
 
 pub use data::{Hooks, Input, Output, Phase, Progress, VoronoiDiagram, VoronoiOutput};
 pub use error::Error;

@@ -8,11 +8,13 @@ use crate::algorithms::reconstruct::reconstruct;
 use crate::algorithms::refine::{Quality, Refiner, VertexKind};
 use crate::algorithms::voronoi::{voronoi_diagram, DualOf};
 use crate::assemble::FinishedMesh;
-use crate::data::{Hooks, Input, Output, Phase, VoronoiOutput};
+use crate::assemble::Numbering;
+use crate::data::{Hooks, Input, Output, Phase, UnsuitableFn, VoronoiOutput};
 use crate::error::Error;
 use crate::geometry::{Exact, Inexact, Point, Predicates};
 use crate::mesh::{Mesh, GHOST, NONE, OUTSIDE};
 use crate::options::{Algorithm, Options};
+use crate::scaling::Scaling;
 
 /// Seed of the randomized insertion order (`i`): fixed, so results are reproducible.
 const BRIO_SEED: u64 = 0x7269_616E_676C_6521;
@@ -74,6 +76,120 @@ fn delaunay_with<P: Predicates>(options: &Options, mut points: Vec<Point>) -> Tr
     }
 }
 
+/// Checks the vertex indices of segments (`p`) and triangles (`r`), and the hole and region
+/// points that will be located: an index out of range is an error, never a silent skip.
+fn check_indices_and_seeds(options: &Options, input: &Input<'_>) -> Result<(), Error> {
+    let base = i64::from(options.first_index());
+    let n = input.point_count() as i64;
+    let check = |item, role, list: &[i32], width: usize| {
+        for (i, row) in list.chunks_exact(width).enumerate() {
+            if let Some(&v) = row
+                .iter()
+                .find(|&&v| !(base..base + n).contains(&i64::from(v)))
+            {
+                return Err(Error::IndexOutOfRange {
+                    item,
+                    number: i as i64 + base,
+                    role,
+                    value: i64::from(v),
+                    first: base,
+                    last: base + n - 1,
+                });
+            }
+        }
+        Ok(())
+    };
+    if options.pslg {
+        check("Segment", "endpoint", input.segments, 2)?;
+    }
+    if options.refine {
+        if input.corners != 3 && input.corners != 6 {
+            return Err(Error::BadCorners(input.corners as i64));
+        }
+        check("Triangle", "corner", input.triangles, input.corners)?;
+    }
+    if options.pslg && !options.refine {
+        let number = |i: usize| (i as i64 + base) as usize;
+        if !options.ignore_holes {
+            if let Some(i) = input
+                .holes
+                .chunks_exact(2)
+                .position(|h| !(h[0].is_finite() && h[1].is_finite()))
+            {
+                return Err(Error::NonFinite {
+                    what: "Hole",
+                    index: number(i),
+                });
+            }
+        }
+        for (i, r) in input.regions.chunks_exact(4).enumerate() {
+            if !(r[0].is_finite() && r[1].is_finite()) {
+                return Err(Error::NonFinite {
+                    what: "Region",
+                    index: number(i),
+                });
+            }
+            if r[3].is_nan() {
+                return Err(Error::NanRegionArea {
+                    region: i as i64 + base,
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The inputs that the engine sees in scaled units (see [`crate::scaling`]).
+struct ScaledInput {
+    options: Options,
+    points: Vec<Point>,
+    holes: Vec<f64>,
+    regions: Vec<f64>,
+    triangle_areas: Option<Vec<f64>>,
+}
+
+impl ScaledInput {
+    fn new(scaling: Scaling, options: &Options, input: &Input<'_>, mut points: Vec<Point>) -> Self {
+        let mut options = options.clone();
+        options.max_area = options.max_area.map(|a| scaling.scale_area(a));
+        let mut limit: f64 = 1.0;
+        for p in &mut points {
+            *p = p.map(|x| scaling.scale(x));
+            limit = limit.max(p[0].abs()).max(p[1].abs());
+        }
+        // Beyond every vertex coordinate (a power of two times `limit` is exact).
+        limit *= 4.0;
+        let seed = |x: f64| scaling.scale_seed(x, limit);
+        let holes = input.holes.iter().map(|&x| seed(x)).collect();
+        let regions = input
+            .regions
+            .chunks_exact(4)
+            .flat_map(|r| [seed(r[0]), seed(r[1]), r[2], scaling.scale_area(r[3])])
+            .collect();
+        let triangle_areas = input
+            .triangle_areas
+            .map(|areas| areas.iter().map(|&a| scaling.scale_area(a)).collect());
+        ScaledInput {
+            options,
+            points,
+            holes,
+            regions,
+            triangle_areas,
+        }
+    }
+
+    /// `input` with the scaled arrays in place of the caller's (the vertices stay the caller's:
+    /// the engine gets the scaled ones separately, and the outputs give these back).
+    fn view<'a>(&'a self, input: &Input<'a>) -> Input<'a> {
+        Input {
+            holes: &self.holes,
+            regions: &self.regions,
+            triangle_areas: self.triangle_areas.as_deref(),
+            ..*input
+        }
+    }
+}
+
 /// Triangulates `input` as the switches in `options` ask. The safe entry point of the engine:
 /// the C ABI, the command-line program and Rust callers all come through here. A failed internal
 /// invariant is an [`Error::Internal`], not a panic: the algorithms report the ones they check,
@@ -85,13 +201,24 @@ pub fn triangulate(
 ) -> Result<(Output, VoronoiOutput), Error> {
     check_supported(options)?;
     let points = checked_points(input)?;
+    check_indices_and_seeds(options, input)?;
+    let scaling = Scaling::for_points(&points)?;
+    let mut scaled = ScaledInput::new(scaling, options, input, points);
+    let points = std::mem::take(&mut scaled.points);
+    let options = &scaled.options;
+    let input = scaled.view(input);
+    let user_test = hooks.unsuitable.map(|test| scaling.unscaled_test(test));
+    let hooks = Hooks {
+        unsuitable: user_test.as_ref().map(|t| t as &UnsuitableFn<'_>),
+        ..*hooks
+    };
     // AssertUnwindSafe: after a panic nothing of the run is used again; the caller's data is
     // only read, and the user test is called, never kept.
     std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         if options.no_exact {
-            run::<Inexact>(options, input, hooks, points)
+            run::<Inexact>(options, &input, &hooks, points, scaling)
         } else {
-            run::<Exact>(options, input, hooks, points)
+            run::<Exact>(options, &input, &hooks, points, scaling)
         }
     }))
     .unwrap_or_else(|panic| Err(Error::from_panic(panic)))
@@ -114,6 +241,7 @@ fn run<P: Predicates>(
     input: &Input<'_>,
     hooks: &Hooks<'_>,
     points: Vec<Point>,
+    scaling: Scaling,
 ) -> Result<(Output, VoronoiOutput), Error> {
     let n = points.len();
     let mut output = Output::default();
@@ -127,11 +255,11 @@ fn run<P: Predicates>(
         let Triangulation { mesh, duplicate_of } = delaunay_with::<P>(options, points);
         for (v, &u) in duplicate_of.iter().enumerate() {
             if u != NONE {
-                let p = mesh.points[v];
+                // The caller's coordinates (`input.points` are not scaled).
                 output.warnings.push(format!(
                     "A duplicate vertex at ({}, {}) appeared and was ignored (vertex {} duplicates vertex {}).",
-                    p[0],
-                    p[1],
+                    input.points[2 * v],
+                    input.points[2 * v + 1],
                     v as i32 + base,
                     u as i32 + base
                 ));
@@ -263,12 +391,12 @@ fn run<P: Predicates>(
     }
     let triangles = meshed.mesh.triangle_count() as u64;
     hooks.report(Phase::Output, 0, triangles);
-    let outputs = write_outputs(options, input, &meshed, output);
+    let outputs = write_outputs(options, input, &meshed, output, scaling)?;
     hooks.report(Phase::Output, triangles, triangles);
     Ok(outputs)
 }
 
-/// Inserts the input segments (skipping those with a bad or repeated endpoint, with a warning).
+/// Inserts the input segments (skipping those whose two endpoints are one vertex, with a warning).
 /// A segment given again (the same two vertices, either way round) is inserted once: a second
 /// insertion would find the first one's chain, which `s` builds from midpoints that rounding
 /// may put an ulp off the line, so that the second copy would cross it at slivers; where markers
@@ -281,22 +409,13 @@ fn insert_segments<P: Predicates>(
     hooks: &Hooks<'_>,
     warnings: &mut Vec<String>,
 ) -> Result<(), Error> {
-    let n = input.point_count() as i64;
     let m = (input.segments.len() / 2) as u64;
     hooks.report(Phase::Segments, 0, m);
     let mut inserted: std::collections::HashMap<(u32, u32), u32> = std::collections::HashMap::new();
     for (i, s) in input.segments.chunks_exact(2).enumerate() {
         let marker = input.segment_markers.map_or(0, |m| m[i]);
-        let ends = [s[0] as i64 - base as i64, s[1] as i64 - base as i64];
-        if ends.iter().any(|&v| v < 0 || v >= n) {
-            warnings.push(format!(
-                "Invalid first or second endpoint of segment {} ({} {}); the segment was skipped.",
-                i as i32 + base,
-                s[0],
-                s[1]
-            ));
-            continue;
-        }
+        // In range: `check_indices_and_seeds` refused the input otherwise.
+        let ends = [s[0] - base, s[1] - base];
         // A duplicate vertex is not in the triangulation: use the copy that is.
         let [a, b] = ends.map(|v| {
             let v = v as u32;
@@ -337,7 +456,8 @@ fn write_outputs(
     input: &Input<'_>,
     meshed: &Meshed,
     mut output: Output,
-) -> (Output, VoronoiOutput) {
+    scaling: Scaling,
+) -> Result<(Output, VoronoiOutput), Error> {
     let mesh = &meshed.mesh;
     // With no triangle at all (all points on a line) no vertex is left out, as in Triangle.
     let all_collinear = mesh.triangle_count() == 0 && !meshed.uses_segments;
@@ -400,9 +520,9 @@ fn write_outputs(
     // Triangle attributes: with `r` the input triangles' (inherited by their pieces), with `A`
     // (and regions) the region's (0 outside every region).
     let domain = &meshed.domain;
-    if (options.refine || (options.region_attributes && input.region_count() > 0))
-        && domain.attribute_count > 0
-    {
+    // `A` without regions: a column of zeros, as Triangle's manual says (Triangle itself
+    // writes no column then).
+    if (options.refine || options.region_attributes) && domain.attribute_count > 0 {
         let attributes = numbering
             .triangles
             .iter()
@@ -430,7 +550,68 @@ fn write_outputs(
         };
         voronoi.diagram = Some(voronoi_diagram(finished.mesh, &dual));
     }
-    (output, voronoi)
+    if !scaling.is_identity() {
+        unscale_outputs(
+            scaling,
+            input.points,
+            mesh,
+            &numbering,
+            &mut output,
+            &mut voronoi,
+        )?;
+    }
+    Ok((output, voronoi))
+}
+
+/// Gives the outputs back in the caller's units: input vertices as the caller gave them, bit for
+/// bit, new vertices, Voronoi points and ray directions scaled back. New vertices of a tiny
+/// input can fall below the normal range there and lose low bits; then the mesh is checked with
+/// the rounded coordinates and refused if a triangle would not stay counter-clockwise.
+fn unscale_outputs(
+    scaling: Scaling,
+    caller_points: &[f64],
+    mesh: &Mesh,
+    numbering: &Numbering,
+    output: &mut Output,
+    voronoi: &mut VoronoiOutput,
+) -> Result<(), Error> {
+    let n = caller_points.len() / 2;
+    let new_vertices = &mesh.points[n..];
+    if new_vertices
+        .iter()
+        .any(|p| scaling.rounds_on_output(p[0]) || scaling.rounds_on_output(p[1]))
+    {
+        let rounded = |v: u32| mesh.points[v as usize].map(|x| scaling.scale(scaling.unscale(x)));
+        if numbering.triangles.iter().any(|&t| {
+            let [a, b, c] = mesh.triangle(t).map(rounded);
+            Exact::orient2d(a, b, c) <= 0.0
+        }) {
+            return Err(Error::CoordinateRange(
+                "The mesh needs new vertices closer together than floating-point numbers can be at the \
+                 magnitude of these coordinates (below the smallest normal number, 2^-1022): given back \
+                 in the caller's units they would invert a triangle. Scale the input up."
+                    .into(),
+            ));
+        }
+    }
+    if let Some(points) = output.points.as_mut() {
+        for x in points.iter_mut() {
+            *x = scaling.unscale(*x);
+        }
+        for v in 0..n {
+            let i = numbering.vertex_index(v as u32);
+            if i != NONE {
+                let i = i as usize;
+                points[2 * i..2 * i + 2].copy_from_slice(&caller_points[2 * v..2 * v + 2]);
+            }
+        }
+    }
+    if let Some(diagram) = voronoi.diagram.as_mut() {
+        for x in diagram.points.iter_mut().chain(diagram.norms.iter_mut()) {
+            *x = scaling.unscale(*x);
+        }
+    }
+    Ok(())
 }
 
 /// `C`: checks the final mesh with exact arithmetic and reports what it found.

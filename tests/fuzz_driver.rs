@@ -22,7 +22,14 @@ fn drive(name: &str, seed: u64, count: usize, max_len: usize, case: impl Fn(&[u8
     while ran < count && start.elapsed() < budget {
         let len = rng.below(max_len + 1);
         let data: Vec<u8> = (0..len).map(|_| rng.next_u64() as u8).collect();
+        let case_start = Instant::now();
         let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| case(&data)));
+        if case_start.elapsed() > Duration::from_secs(1) {
+            println!(
+                "{name}: case {ran} took {:.1} s: {data:?}",
+                case_start.elapsed().as_secs_f64()
+            );
+        }
         if outcome.is_err() {
             panic!("{name}: case {ran} (seed {seed:#x}) failed; bytes {data:?}");
         }
@@ -44,6 +51,14 @@ fn triangulate_through_the_c_abi() {
         160,
         |d| cases::triangulate(d, false),
     );
+    assert!(ran > 100, "only {ran} cases ran");
+}
+
+#[test]
+fn triangulate_extreme_coordinates() {
+    let ran = drive("triangulate (extreme)", 0xF022_0002, 5_000, 160, |d| {
+        cases::triangulate(d, true)
+    });
     assert!(ran > 100, "only {ran} cases ran");
 }
 

@@ -137,6 +137,8 @@ const CASES: &[&str] = &[
     "T-shaped PSLG pcDQ, no segment markers (test_triangulate2)",
     "two points Q -> TriangulateError (test_triangulate_catch_exit)",
     "two points, raw call returns 1 (test_ctriangulate_catch_exit)",
+    "0-based segments -> TriangulateError naming the segment and the range",
+    "rpq keeps the holes of the input (refining a mesh of a square with a hole)",
     "unit square pqQn (test_neighbors)",
     "unit square pqQ (test_o2)",
     "unit square pqo2Q (test_o2)",

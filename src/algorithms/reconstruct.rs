@@ -28,8 +28,13 @@ pub fn reconstruct<P: Predicates>(
         for k in 0..3 {
             let index = tri[k] as i64 - base as i64;
             if index < 0 || index >= n {
-                return Err(Error::InvalidTriangleVertex {
-                    triangle: i + base as usize,
+                return Err(Error::IndexOutOfRange {
+                    item: "Triangle",
+                    number: i as i64 + base as i64,
+                    role: "corner",
+                    value: tri[k] as i64,
+                    first: base as i64,
+                    last: n - 1 + base as i64,
                 });
             }
             v[k] = index as u32;

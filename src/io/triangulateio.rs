@@ -150,8 +150,8 @@ pub unsafe fn input_from_raw<'a>(
     };
     if options.refine {
         let ntri = count("numberoftriangles", tio.numberoftriangles)?;
-        if tio.numberofcorners < 3 {
-            return Err(Error::TooFewCorners(tio.numberofcorners as i64));
+        if tio.numberofcorners != 3 && tio.numberofcorners != 6 {
+            return Err(Error::BadCorners(tio.numberofcorners as i64));
         }
         let corners = count("numberofcorners", tio.numberofcorners)?;
         let ntattr = count("numberoftriangleattributes", tio.numberoftriangleattributes)?;
@@ -186,24 +186,23 @@ pub unsafe fn input_from_raw<'a>(
             )?
         };
         input.segment_markers = unsafe { optional(tio.segmentmarkerlist, nseg) };
-        if !options.refine {
-            let nholes = count("numberofholes", tio.numberofholes)?;
-            let nregions = count("numberofregions", tio.numberofregions)?;
-            input.holes = unsafe {
-                required(
-                    "holelist",
-                    tio.holelist,
-                    product("numberofholes", nholes, 2)?,
-                )?
-            };
-            input.regions = unsafe {
-                required(
-                    "regionlist",
-                    tio.regionlist,
-                    product("numberofregions", nregions, 4)?,
-                )?
-            };
-        }
+        // Read with `r` too: refinement carves nothing, but `out` lists them as with `p` alone.
+        let nholes = count("numberofholes", tio.numberofholes)?;
+        let nregions = count("numberofregions", tio.numberofregions)?;
+        input.holes = unsafe {
+            required(
+                "holelist",
+                tio.holelist,
+                product("numberofholes", nholes, 2)?,
+            )?
+        };
+        input.regions = unsafe {
+            required(
+                "regionlist",
+                tio.regionlist,
+                product("numberofregions", nregions, 4)?,
+            )?
+        };
     }
     Ok(input)
 }

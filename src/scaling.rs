@@ -1,0 +1,220 @@
+//! Internal scaling by a power of two, so that the exact predicates stay exact for coordinates of
+//! any magnitude.
+//!
+//! Shewchuk's adaptive predicates are exact only while no product overflows or underflows, and
+//! `incircle` multiplies four coordinate differences. Multiplying every coordinate by the same
+//! power of two changes no bit of any mantissa (it is exact unless it overflows or underflows,
+//! which the choice below rules out) and no sign of any predicate, so the engine works on scaled
+//! coordinates and the outputs are scaled back: input vertices are given back bit for bit (the
+//! caller's own values), new vertices, Voronoi points and ray directions are scaled back
+//! (exact, unless they fall below the smallest normal numbers of a tiny input, see
+//! [`Scaling::rounds_on_output`]).
+//!
+//! The bounds. Let `2^hi` be the largest coordinate magnitude rounded down to a power of two and
+//! `2^lo` the finest bit set in any coordinate (every coordinate is an integer multiple of
+//! `2^lo`). After scaling by `2^k`:
+//! - every coordinate difference, and every term of the adaptive stages (differences, their
+//!   rounding tails, Veltkamp halves), is an integer multiple of `2^(lo+k)`, so a product of up
+//!   to four of them is a multiple of `2^(4(lo+k))`. With `lo + k ≥ -240` that is at least
+//!   `2^-960`: every product is exact or rounds in the normal range, where the predicates' error
+//!   bounds hold (and the filters' bounds, about `2^-50` of a permanent, stay normal too);
+//! - every coordinate is below `2^(hi+k+1)`; with `hi + k ≤ 100`, degree-four terms (below
+//!   `2^(4·102+8)`), circumcentres of the thinnest possible triangles (a degree-three numerator
+//!   over a degree-two denominator of at least `2^-480`) and the refinement's degree-four
+//!   quality tests stay far below the overflow threshold `2^1024`.
+//!
+//! `k` is `-hi` (the largest magnitude between 1 and 2, like a unit-size input) unless the finest
+//! bit needs more room, then as small as `lo + k ≥ -240` allows. An input with `hi - lo > 340`
+//! cannot meet both bounds and is refused with [`Error::CoordinateRange`].
+
+use crate::data::UnsuitableFn;
+use crate::error::Error;
+use crate::geometry::Point;
+
+/// The finest bit that a scaled coordinate may have (see the module documentation).
+pub const FINEST_SCALED_BIT: i32 = -240;
+/// The largest binary exponent of a scaled coordinate's magnitude.
+pub const LARGEST_SCALED_EXPONENT: i32 = 100;
+/// The largest `hi - lo` that scaling can accommodate.
+pub const LARGEST_BIT_SPAN: i32 = LARGEST_SCALED_EXPONENT - FINEST_SCALED_BIT;
+
+/// `floor(log2 |x|)` of a finite non-zero `x`.
+fn exponent(x: f64) -> i32 {
+    let bits = x.to_bits();
+    let biased = ((bits >> 52) & 0x7ff) as i32;
+    if biased == 0 {
+        let mantissa = bits & ((1 << 52) - 1);
+        -1074 + 63 - mantissa.leading_zeros() as i32
+    } else {
+        biased - 1023
+    }
+}
+
+/// The exponent of the lowest set bit of a finite non-zero `x`.
+fn lowest_bit(x: f64) -> i32 {
+    let bits = x.to_bits();
+    let biased = ((bits >> 52) & 0x7ff) as i32;
+    let mantissa = bits & ((1 << 52) - 1);
+    if biased == 0 {
+        -1074 + mantissa.trailing_zeros() as i32
+    } else {
+        biased - 1075 + (mantissa | 1 << 52).trailing_zeros() as i32
+    }
+}
+
+/// `2^e` for `e` in the normal range.
+fn power_of_two(e: i32) -> f64 {
+    debug_assert!((-1022..=1023).contains(&e));
+    f64::from_bits(((e + 1023) as u64) << 52)
+}
+
+/// `x · 2^k`, in two exact steps (a single power may not be representable); only the last step
+/// can round, when the result is subnormal.
+fn times_power_of_two(x: f64, k: i32) -> f64 {
+    if k == 0 {
+        return x;
+    }
+    let half = k / 2;
+    x * power_of_two(half) * power_of_two(k - half)
+}
+
+/// Scaled coordinate = caller's coordinate · `2^exponent`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Scaling {
+    pub exponent: i32,
+}
+
+impl Scaling {
+    /// The scaling for the points (x, y pairs), or the error that no scaling makes them safe.
+    pub fn for_points(points: &[Point]) -> Result<Scaling, Error> {
+        // (exponent, vertex) of the largest magnitude and of the finest bit.
+        let mut hi: Option<(i32, usize)> = None;
+        let mut lo: Option<(i32, usize)> = None;
+        for (v, p) in points.iter().enumerate() {
+            for &x in p.iter().filter(|x| **x != 0.0) {
+                let (e, b) = (exponent(x), lowest_bit(x));
+                if hi.is_none_or(|(h, _)| e > h) {
+                    hi = Some((e, v));
+                }
+                if lo.is_none_or(|(l, _)| b < l) {
+                    lo = Some((b, v));
+                }
+            }
+        }
+        let (Some((hi, big)), Some((lo, fine))) = (hi, lo) else {
+            return Ok(Scaling::default());
+        };
+        if hi - lo > LARGEST_BIT_SPAN {
+            return Err(Error::CoordinateRange(format!(
+                "The vertex coordinates span too many binary orders of magnitude for exact arithmetic: \
+                 vertex {big} has a coordinate of magnitude 2^{hi} and vertex {fine} one whose lowest bit is 2^{lo}, \
+                 {} binary orders apart; at most {LARGEST_BIT_SPAN} are supported (scaled by a power of two, the \
+                 largest magnitude must stay below 2^{} and the lowest bit at or above 2^{FINEST_SCALED_BIT}, so \
+                 that no degree-four term of the in-circle test overflows or underflows).",
+                hi - lo,
+                LARGEST_SCALED_EXPONENT + 1
+            )));
+        }
+        let exponent = (-hi).max(FINEST_SCALED_BIT - lo);
+        Ok(Scaling { exponent })
+    }
+
+    pub fn is_identity(&self) -> bool {
+        self.exponent == 0
+    }
+
+    pub fn scale(&self, x: f64) -> f64 {
+        times_power_of_two(x, self.exponent)
+    }
+
+    pub fn unscale(&self, x: f64) -> f64 {
+        times_power_of_two(x, -self.exponent)
+    }
+
+    /// An area bound in scaled units. A positive bound stays positive (an underflow would
+    /// turn it into "unconstrained"); an overflow gives infinity, which constrains nothing, as
+    /// a bound larger than the domain.
+    pub fn scale_area(&self, area: f64) -> f64 {
+        let scaled = times_power_of_two(area, 2 * self.exponent);
+        if area > 0.0 && scaled == 0.0 {
+            f64::MIN_POSITIVE
+        } else {
+            scaled
+        }
+    }
+
+    pub fn unscale_area(&self, area: f64) -> f64 {
+        times_power_of_two(area, -2 * self.exponent)
+    }
+
+    /// A hole or region coordinate, scaled and kept within `±limit`, a bound beyond every
+    /// scaled vertex coordinate: a point outside that box is outside every triangle, and stays
+    /// so, while the predicates see no overflowing value.
+    pub fn scale_seed(&self, x: f64, limit: f64) -> f64 {
+        self.scale(x).clamp(-limit, limit)
+    }
+
+    /// Whether the scaled value `x` changes when given back in the caller's units (it falls
+    /// below the normal range of a tiny input and loses low bits).
+    pub fn rounds_on_output(&self, x: f64) -> bool {
+        self.scale(self.unscale(x)) != x
+    }
+
+    /// The user's test (`u`), called with the caller's coordinates and area.
+    pub fn unscaled_test<'a>(
+        self,
+        test: &'a UnsuitableFn<'a>,
+    ) -> impl Fn(f64, f64, f64, f64, f64, f64, f64) -> bool + Sync + 'a {
+        move |ox, oy, dx, dy, ax, ay, area| {
+            let u = |x| self.unscale(x);
+            test(
+                u(ox),
+                u(oy),
+                u(dx),
+                u(dy),
+                u(ax),
+                u(ay),
+                self.unscale_area(area),
+            )
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn exponents_and_lowest_bits() {
+        assert_eq!((exponent(1.0), lowest_bit(1.0)), (0, 0));
+        assert_eq!((exponent(-3.0), lowest_bit(-3.0)), (1, 0));
+        assert_eq!((exponent(0.75), lowest_bit(0.75)), (-1, -2));
+        let tiniest = f64::from_bits(1);
+        assert_eq!((exponent(tiniest), lowest_bit(tiniest)), (-1074, -1074));
+        assert_eq!(exponent(f64::MAX), 1023);
+        assert_eq!(lowest_bit(f64::MAX), 1023 - 52);
+        assert_eq!(exponent(f64::MIN_POSITIVE), -1022);
+    }
+
+    #[test]
+    fn scaling_is_exact_both_ways() {
+        for x in [1e300, -1e-300, 3.0e-310, 1.5, 1e150] {
+            let s = Scaling::for_points(&[[x, 0.0]]).unwrap();
+            let scaled = s.scale(x);
+            assert!((1.0..2.0).contains(&scaled.abs()), "{x} → {scaled}");
+            assert_eq!(s.unscale(scaled).to_bits(), x.to_bits());
+        }
+    }
+
+    #[test]
+    fn too_wide_a_span_is_refused_and_a_wide_one_moves_up() {
+        assert!(matches!(
+            Scaling::for_points(&[[1e300, 1e-300]]),
+            Err(Error::CoordinateRange(_))
+        ));
+        // 1 and 2^-300: span 300, the lowest bit goes to 2^-240, the top to 2^60.
+        let s = Scaling::for_points(&[[1.0, power_of_two(-300)]]).unwrap();
+        assert_eq!(s.exponent, 60);
+        assert!(Scaling::for_points(&[[0.0, 0.0]]).unwrap().is_identity());
+    }
+}
