@@ -1,0 +1,709 @@
+//! Differential tests of quality meshing (issue 11) on Triangle's own example files — every
+//! `.poly`, `.node` and `.ele` (with its `.area`) in the data directory of the PyPI `triangle`
+//! package, read from there at test time (`TRIANGLE_DATA_DIR`, else
+//! `.venv/lib/python3*/site-packages/triangle/data`; `bash scripts/setup-python.sh` installs it;
+//! the files are not copied into this repository) — and on wedges of 1°, 5°, 10°, 15° and 25°
+//! between two segments and a fan of segments from one vertex, against Debian's Triangle 1.6.
+//!
+//! For each input and switch set (`q q30 q33` on the vertices of every `.node` and `.poly`;
+//! `pq pq30 pq33 pq30a<x> pqAa pqs pcq30 pqD pqY` on every `.poly`; `rpq30 rpqa<x> rpqD rpYq`,
+//! and `rpqa` with an `.area` file, on every mesh), both outputs, ours and Triangle's, must be
+//! valid constrained Delaunay meshes with every input segment a chain of output segments, and:
+//! - every angle ≥ θ, except in triangles that Triangle's small-angle rule excuses: the shortest
+//!   edge joins two vertices on two different input segments (or hull edges with `c` and for
+//!   point sets, or
+//!   boundary edges of the mesh with `r`) that share a vertex, at distances from it equal within
+//!   1% (the rule of `Refiner::is_excused_by_small_input_angle`). With `Y`, where boundary
+//!   segments cannot be split, our smallest unexcused angle is at least half of θ and of
+//!   Triangle's;
+//! - every triangle within its area bound (global `a<x>`, regional `a` by flooding from the
+//!   region points across non-segment edges, per triangle of the previous mesh with `rpqa`);
+//! - our triangles cover the same area as Triangle's, and number between 0.5× and 2× Triangle's.
+//!
+//! Orientation, validity and the Delaunay property are decided with exact predicates; angles are
+//! compared with θ in floating point within 10^-6°. Inputs Triangle does not finish (the
+//! Greenland coastline, with vertices a rounding apart: Triangle loops) are meshed by us alone,
+//! which must return a valid mesh. Without the data directory or the reference library these
+//! tests fail (they must not be skipped).
+
+mod common;
+
+use std::collections::{HashMap, HashSet};
+use std::path::{Path, PathBuf};
+
+use common::call::{MeshInput, Triangulation};
+use common::checks::{convex_hull, orient2d};
+use common::points::Point;
+use common::pslg::{polygon_area, with_hull_segments};
+use common::pslg_checks::{check_constrained_delaunay, segment_chains, MeshView};
+use common::quality::{angles, check_areas, ANGLE_TOLERANCE};
+use common::reference::{Reference, REFERENCE_LIBRARY};
+use common::{ours, reference};
+use triangle_rs::io::files::{read_area, read_ele, read_node, read_poly};
+
+/// Our triangle count must lie within these factors of Triangle's.
+const COUNT_RANGE: (f64, f64) = (0.5, 2.0);
+/// Two distances from a common vertex count as equal within this fraction (the test of the
+/// excused configuration; the engine's is tighter).
+const EQUAL_DISTANCE: f64 = 0.01;
+/// Inputs that Triangle does not finish with `q` (it loops): meshed by us alone.
+const TRIANGLE_LOOPS_ON: &[&str] = &["greenland"];
+
+/// Triangle's example files: `TRIANGLE_DATA_DIR`, else the PyPI package's data directory in the
+/// repository's `.venv`. Fails with what to do when neither exists.
+fn data_dir() -> PathBuf {
+    if let Some(dir) = std::env::var_os("TRIANGLE_DATA_DIR") {
+        let dir = PathBuf::from(dir);
+        assert!(
+            dir.join("la.poly").is_file(),
+            "TRIANGLE_DATA_DIR={} holds no la.poly: point it at the data directory of the PyPI \
+             `triangle` package",
+            dir.display()
+        );
+        return dir;
+    }
+    let lib = Path::new(env!("CARGO_MANIFEST_DIR")).join(".venv/lib");
+    let found = std::fs::read_dir(&lib).ok().and_then(|entries| {
+        entries
+            .flatten()
+            .filter(|e| e.file_name().to_string_lossy().starts_with("python3"))
+            .map(|e| e.path().join("site-packages/triangle/data"))
+            .find(|d| d.join("la.poly").is_file())
+    });
+    found.unwrap_or_else(|| {
+        panic!(
+            "Triangle's example files are missing: no {}/python3*/site-packages/triangle/data \
+             (run `bash scripts/setup-python.sh`, which installs the PyPI `triangle` package, or \
+             set TRIANGLE_DATA_DIR)",
+            lib.display()
+        )
+    })
+}
+
+fn read_text(path: &Path) -> String {
+    std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+fn pairs(flat: &[f64]) -> Vec<Point> {
+    flat.chunks_exact(2).map(|c| [c[0], c[1]]).collect()
+}
+
+/// One input of the tests, zero-based.
+struct Example {
+    name: String,
+    input: MeshInput,
+    /// The switch sets (without `z` and `Q`, which are appended).
+    switches: Vec<String>,
+}
+
+/// The largest power of two at most `x`: an area bound that prints exactly (Triangle reads no
+/// exponent notation).
+fn power_of_two_below(x: f64) -> f64 {
+    2f64.powi(x.log2().floor() as i32)
+}
+
+/// An area bound that makes a few hundred triangles of `points`' bounding box.
+fn area_switch(points: &[Point]) -> String {
+    let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
+    for p in points {
+        for i in 0..2 {
+            lo[i] = lo[i].min(p[i]);
+            hi[i] = hi[i].max(p[i]);
+        }
+    }
+    format!(
+        "a{}",
+        power_of_two_below((hi[0] - lo[0]) * (hi[1] - lo[1]) / 300.0)
+    )
+}
+
+/// Vertices of a `.node` file (or of a `.poly` file that has its own), zero-based.
+fn node_input(node: &triangle_rs::io::files::NodeFile) -> MeshInput {
+    MeshInput {
+        points: pairs(&node.points),
+        attributes: node.attributes.clone(),
+        attribute_count: node.attribute_count,
+        markers: node.markers.clone(),
+        ..MeshInput::default()
+    }
+}
+
+/// Every example file of `dir` as inputs with their switch sets.
+fn examples(dir: &Path) -> Vec<Example> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    let point_sets = ["q", "q30", "q33"];
+    let mut found = Vec::new();
+    for file in &names {
+        let path = dir.join(file);
+        if let Some(base) = file.strip_suffix(".poly") {
+            let poly = read_poly(&read_text(&path), file, true).unwrap_or_else(|e| panic!("{e}"));
+            if poly.vertices.point_count() == 0 {
+                continue; // the segments of a mesh (`x.1.poly`): used with its `.ele`
+            }
+            let first = poly.vertices.first_number.unwrap_or(1) as i32;
+            let mut input = node_input(&poly.vertices);
+            input.segments = poly
+                .segments
+                .chunks_exact(2)
+                .map(|s| [s[0] - first, s[1] - first])
+                .collect();
+            input.segment_markers = poly.segment_markers.clone();
+            input.holes = pairs(&poly.holes);
+            input.regions = poly
+                .regions
+                .chunks_exact(4)
+                .map(|r| [r[0], r[1], r[2], r[3]])
+                .collect();
+            let mut switches: Vec<String> = point_sets.iter().map(|s| s.to_string()).collect();
+            switches.extend(["pq", "pq30", "pq33", "pqs", "pcq30", "pqD", "pqY"].map(String::from));
+            switches.push(format!("pq30{}", area_switch(&input.points)));
+            if !input.regions.is_empty() {
+                switches.push("pqAa".into());
+            }
+            found.push(Example {
+                name: base.to_string(),
+                input,
+                switches,
+            });
+        } else if let Some(base) = file.strip_suffix(".node") {
+            if base.ends_with(".v") || names.contains(&format!("{base}.ele")) {
+                continue; // a Voronoi diagram, or the vertices of a mesh
+            }
+            let node = read_node(&read_text(&path), file).unwrap_or_else(|e| panic!("{e}"));
+            found.push(Example {
+                name: base.to_string(),
+                input: node_input(&node),
+                switches: point_sets.iter().map(|s| s.to_string()).collect(),
+            });
+        } else if let Some(base) = file.strip_suffix(".ele") {
+            found.push(mesh_example(dir, base, &names));
+        }
+    }
+    found
+}
+
+/// The mesh `base.ele` with its `.node`, the segments of its `.poly` if there is one, and the
+/// bounds of its `.area` if there is one.
+fn mesh_example(dir: &Path, base: &str, names: &[String]) -> Example {
+    let node_file = format!("{base}.node");
+    let node =
+        read_node(&read_text(&dir.join(&node_file)), &node_file).unwrap_or_else(|e| panic!("{e}"));
+    let first = node.first_number.unwrap_or(1) as i32;
+    let ele_file = format!("{base}.ele");
+    let ele =
+        read_ele(&read_text(&dir.join(&ele_file)), &ele_file).unwrap_or_else(|e| panic!("{e}"));
+    let mut input = node_input(&node);
+    input.triangles = ele.triangles.iter().map(|v| v - first).collect();
+    input.corners = ele.corners;
+    input.triangle_attributes = ele.attributes.clone();
+    input.triangle_attribute_count = ele.attribute_count;
+    let poly_file = format!("{base}.poly");
+    if names.contains(&poly_file) {
+        let poly = read_poly(&read_text(&dir.join(&poly_file)), &poly_file, false)
+            .unwrap_or_else(|e| panic!("{e}"));
+        input.segments = poly
+            .segments
+            .chunks_exact(2)
+            .map(|s| [s[0] - first, s[1] - first])
+            .collect();
+        input.segment_markers = poly.segment_markers.clone();
+    }
+    let mut switches: Vec<String> = ["rpq30", "rpqD", "rpYq"].map(String::from).to_vec();
+    switches.push(format!("rpq{}", area_switch(&input.points)));
+    let area_file = format!("{base}.area");
+    if names.contains(&area_file) {
+        let areas = read_area(&read_text(&dir.join(&area_file)), &area_file)
+            .unwrap_or_else(|e| panic!("{e}"));
+        input.triangle_areas = Some(areas.areas);
+        switches.push("rpqa".into());
+    }
+    Example {
+        name: base.to_string(),
+        input,
+        switches,
+    }
+}
+
+/// The angle bound of `q` in `switches` (`q` alone: 20°).
+fn min_angle(switches: &str) -> f64 {
+    let at = switches.find('q').expect("a q switch");
+    let number: String = switches[at + 1..]
+        .chars()
+        .take_while(|c| c.is_ascii_digit() || *c == '.')
+        .collect();
+    number.parse().unwrap_or(20.0)
+}
+
+/// The number after `a`, if any.
+fn global_area(switches: &str) -> Option<f64> {
+    let at = switches.find('a')?;
+    let number: String = switches[at + 1..]
+        .chars()
+        .take_while(|c| c.is_ascii_digit() || *c == '.')
+        .collect();
+    number.parse().ok()
+}
+
+/// The edges of a triangle list that only one triangle has: the boundary of a previous mesh,
+/// whose edges `r` keeps as segments.
+fn boundary_edges(triangles: &[i32], corners: usize) -> Vec<[i32; 2]> {
+    let mut directed = HashSet::new();
+    for t in triangles.chunks_exact(corners) {
+        for i in 0..3 {
+            directed.insert((t[i], t[(i + 1) % 3]));
+        }
+    }
+    let mut edges: Vec<[i32; 2]> = directed
+        .iter()
+        .filter(|&&(a, b)| !directed.contains(&(b, a)))
+        .map(|&(a, b)| [a, b])
+        .collect();
+    edges.sort();
+    edges
+}
+
+/// The segments whose angles the output may keep: the input's, the hull's with `c`, the
+/// previous mesh's boundary with `r`.
+fn segments_of_the_domain(input: &MeshInput, switches: &str) -> MeshInput {
+    if switches.contains('r') {
+        let mut with_boundary = MeshInput {
+            segments: if switches.contains('p') {
+                input.segments.clone()
+            } else {
+                Vec::new()
+            },
+            segment_markers: None,
+            ..input.clone()
+        };
+        let known: HashSet<[i32; 2]> = with_boundary
+            .segments
+            .iter()
+            .map(|s| [s[0].min(s[1]), s[0].max(s[1])])
+            .collect();
+        with_boundary.segments.extend(
+            boundary_edges(&input.triangles, input.corners)
+                .into_iter()
+                .filter(|s| !known.contains(&[s[0].min(s[1]), s[0].max(s[1])])),
+        );
+        with_boundary
+    } else if switches.contains('c') {
+        with_hull_segments(input)
+    } else {
+        input.clone()
+    }
+}
+
+/// Whether the triangle `corners`, whose smallest angle is below θ, is excused by Triangle's
+/// small-angle rule: its shortest edge (or one as short within rounding) joins two vertices on
+/// two different segment chains that share a vertex, at equal distances from it.
+fn excused(
+    mesh: &MeshView<'_>,
+    chains_of: &HashMap<usize, Vec<usize>>,
+    chains: &[HashSet<usize>],
+    corners: [usize; 3],
+) -> bool {
+    let p = |v: usize| mesh.points[v];
+    let length2 = |a: usize, b: usize| (p(a)[0] - p(b)[0]).powi(2) + (p(a)[1] - p(b)[1]).powi(2);
+    let edges = [0, 1, 2].map(|i| (corners[i], corners[(i + 1) % 3]));
+    let shortest = edges
+        .iter()
+        .map(|&(a, b)| length2(a, b))
+        .fold(f64::INFINITY, f64::min);
+    let no_chains = Vec::new();
+    edges
+        .iter()
+        .filter(|&&(a, b)| length2(a, b) <= shortest * (1.0 + 1e-9))
+        .any(|&(u, v)| {
+            let (cu, cv) = (
+                chains_of.get(&u).unwrap_or(&no_chains),
+                chains_of.get(&v).unwrap_or(&no_chains),
+            );
+            cu.iter().any(|&i| {
+                cv.iter().filter(|&&j| j != i).any(|&j| {
+                    chains[i].intersection(&chains[j]).any(|&o| {
+                        if o == u || o == v {
+                            return false;
+                        }
+                        let (du, dv) = (length2(o, u).sqrt(), length2(o, v).sqrt());
+                        du.max(dv) <= (1.0 + EQUAL_DISTANCE) * du.min(dv)
+                    })
+                })
+            })
+        })
+}
+
+/// What one output achieved.
+#[derive(Clone, Copy, Debug)]
+struct Measures {
+    triangles: usize,
+    area: f64,
+    smallest_angle: f64,
+    /// The smallest angle of the triangles the small-angle rule does not excuse.
+    smallest_unexcused: f64,
+    excused: usize,
+}
+
+/// The regional bound of each triangle: flooding from each region point's triangle across
+/// non-segment edges (a later region overrides an earlier one, as in Triangle).
+fn regional_bounds(mesh: &MeshView<'_>, regions: &[[f64; 4]]) -> Vec<Option<f64>> {
+    let mut bound = vec![None; mesh.triangles.len()];
+    let mut triangle_of_edge = HashMap::new();
+    for (t, c) in mesh.triangles.iter().enumerate() {
+        for i in 0..3 {
+            triangle_of_edge.insert((c[i], c[(i + 1) % 3]), t);
+        }
+    }
+    for r in regions {
+        let x = [r[0], r[1]];
+        let Some(start) = mesh.triangles.iter().position(|c| {
+            (0..3).all(|i| orient2d(mesh.points[c[i]], mesh.points[c[(i + 1) % 3]], x) >= 0.0)
+        }) else {
+            continue;
+        };
+        let mut seen = HashSet::from([start]);
+        let mut stack = vec![start];
+        while let Some(t) = stack.pop() {
+            bound[t] = (r[3] > 0.0).then_some(r[3]);
+            let c = mesh.triangles[t];
+            for i in 0..3 {
+                let (a, b) = (c[i], c[(i + 1) % 3]);
+                if mesh.is_segment(a, b) {
+                    continue;
+                }
+                if let Some(&n) = triangle_of_edge.get(&(b, a)) {
+                    if seen.insert(n) {
+                        stack.push(n);
+                    }
+                }
+            }
+        }
+    }
+    bound
+}
+
+/// The bound of each output triangle with `rpqa` and per-triangle bounds: the largest bound of
+/// the previous mesh's triangles whose bounding boxes overlap its own, or none if one of them is
+/// unconstrained (refinement passes a triangle's bound on to the triangles made from it, and
+/// flips move edges across the old ones, so an output triangle may straddle old ones).
+fn previous_mesh_bounds(mesh: &MeshView<'_>, input: &MeshInput, areas: &[f64]) -> Vec<Option<f64>> {
+    let boxes = |corners: [Point; 3]| {
+        let xs = corners.map(|p| p[0]);
+        let ys = corners.map(|p| p[1]);
+        let min = |v: [f64; 3]| v.into_iter().fold(f64::INFINITY, f64::min);
+        let max = |v: [f64; 3]| v.into_iter().fold(f64::NEG_INFINITY, f64::max);
+        [min(xs), min(ys), max(xs), max(ys)]
+    };
+    let old: Vec<[f64; 4]> = input
+        .triangles
+        .chunks_exact(input.corners)
+        .map(|t| boxes([0, 1, 2].map(|i| input.points[t[i] as usize])))
+        .collect();
+    mesh.triangles
+        .iter()
+        .map(|c| {
+            let b = boxes(c.map(|v| mesh.points[v]));
+            let mut bound = Some(0.0f64);
+            for (t, o) in old.iter().enumerate() {
+                let overlap = o[0] < b[2] && b[0] < o[2] && o[1] < b[3] && b[1] < o[3];
+                if overlap {
+                    bound = bound.filter(|_| areas[t] > 0.0).map(|m| m.max(areas[t]));
+                }
+            }
+            bound.filter(|&m| m > 0.0)
+        })
+        .collect()
+}
+
+/// For a point set (no segments but the hull's): the output vertices on each edge of the
+/// input's convex hull (within rounding: refinement splits them), ends included.
+fn hull_chains(mesh: &MeshView<'_>, input: &MeshInput) -> Vec<HashSet<usize>> {
+    let hull = convex_hull(&input.points);
+    (0..hull.len())
+        .map(|i| {
+            let (a, b) = (hull[i], hull[(i + 1) % hull.len()]);
+            let d = [b[0] - a[0], b[1] - a[1]];
+            let length2 = d[0] * d[0] + d[1] * d[1];
+            (0..mesh.points.len())
+                .filter(|&v| mesh.in_mesh[v])
+                .filter(|&v| {
+                    let p = mesh.points[v];
+                    let along = (p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1];
+                    let across = (p[0] - a[0]) * d[1] - (p[1] - a[1]) * d[0];
+                    (0.0..=length2).contains(&along) && across.abs() <= 1e-9 * length2
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Checks one output of `example` with `switches` (whoever made it); panics with the reason.
+fn check_output(example: &Example, switches: &str, who: &str, out: &Triangulation) -> Measures {
+    let context = format!("{}, \"{switches}\", {who} mesh", example.name);
+    let fail = |e: String| -> ! { panic!("{context}: {e}") };
+    let mesh = MeshView::of(out).unwrap_or_else(|e| fail(e));
+    if mesh.triangles.is_empty() {
+        return Measures {
+            triangles: 0,
+            area: 0.0,
+            smallest_angle: 180.0,
+            smallest_unexcused: 180.0,
+            excused: 0,
+        };
+    }
+    check_constrained_delaunay(&mesh).unwrap_or_else(|e| fail(e));
+    let chain_sets: Vec<HashSet<usize>> = if switches.contains('p') || switches.contains('r') {
+        let domain = segments_of_the_domain(&example.input, switches);
+        segment_chains(&domain, &mesh, switches.contains('c'))
+            .unwrap_or_else(|e| fail(e))
+            .values()
+            .map(|c| c.iter().copied().collect())
+            .collect()
+    } else {
+        hull_chains(&mesh, &example.input)
+    };
+    let mut chains_of: HashMap<usize, Vec<usize>> = HashMap::new();
+    for (i, c) in chain_sets.iter().enumerate() {
+        for &v in c {
+            chains_of.entry(v).or_default().push(i);
+        }
+    }
+
+    // Angles.
+    let theta = min_angle(switches);
+    let mut measures = Measures {
+        triangles: mesh.triangles.len(),
+        area: mesh.area(),
+        smallest_angle: 180.0,
+        smallest_unexcused: 180.0,
+        excused: 0,
+    };
+    let mut worst_unexcused = None;
+    for &c in &mesh.triangles {
+        let [a, b, d] = c.map(|v| mesh.points[v]);
+        let smallest = angles(a, b, d).into_iter().fold(180.0, f64::min);
+        measures.smallest_angle = measures.smallest_angle.min(smallest);
+        if smallest >= theta - ANGLE_TOLERANCE {
+            continue;
+        }
+        if excused(&mesh, &chains_of, &chain_sets, c) {
+            measures.excused += 1;
+        } else if smallest < measures.smallest_unexcused {
+            measures.smallest_unexcused = smallest;
+            worst_unexcused = Some([a, b, d]);
+        }
+    }
+    if !switches.contains('Y') {
+        if let Some(t) = worst_unexcused {
+            fail(format!(
+                "triangle {t:?} has an angle of {}°, below {theta}°, and Triangle's small-angle \
+                 rule does not excuse it",
+                measures.smallest_unexcused
+            ));
+        }
+    }
+
+    // Area bounds.
+    let bounds: Vec<Option<f64>> = if switches.contains('r') && switches.ends_with("qa") {
+        let areas = example
+            .input
+            .triangle_areas
+            .as_deref()
+            .expect("an .area file");
+        previous_mesh_bounds(&mesh, &example.input, areas)
+    } else if switches.contains("Aa") {
+        regional_bounds(&mesh, &example.input.regions)
+    } else {
+        vec![global_area(switches); mesh.triangles.len()]
+    };
+    check_areas(&mesh, &|t| bounds[t]).unwrap_or_else(|e| fail(e));
+    measures
+}
+
+/// Ours and Triangle's on `example` with `switches`, both checked; then the differential bounds.
+fn compare(example: &Example, switches: &str, triangle: &Reference) -> String {
+    let full = format!("{switches}zQ");
+    let context = format!("{}, \"{full}\"", example.name);
+    let theirs = triangle.triangulate(&full, &example.input);
+    let ours = ours(&full, &example.input).unwrap_or_else(|e| panic!("{context}: {e}"));
+    let t = check_output(example, switches, "Triangle's", &theirs);
+    let o = check_output(example, switches, "our", &ours);
+    let numbers = format!(
+        "{context}: {} triangles (Triangle {}), smallest angle {:.4}° (Triangle {:.4}°), \
+         smallest unexcused {:.4}° (Triangle {:.4}°)",
+        o.triangles,
+        t.triangles,
+        o.smallest_angle,
+        t.smallest_angle,
+        o.smallest_unexcused,
+        t.smallest_unexcused
+    );
+    assert!(
+        (o.area - t.area).abs() <= 1e-9 * t.area.abs().max(f64::MIN_POSITIVE),
+        "{context}: our triangles cover {}, Triangle's {}",
+        o.area,
+        t.area
+    );
+    if t.triangles == 0 {
+        assert_eq!(o.triangles, 0, "{numbers}");
+    } else {
+        let ratio = o.triangles as f64 / t.triangles as f64;
+        assert!(
+            (COUNT_RANGE.0..=COUNT_RANGE.1).contains(&ratio),
+            "{numbers}: {ratio:.3}× Triangle's triangles, outside {COUNT_RANGE:?}"
+        );
+    }
+    if switches.contains('Y') {
+        // Splitting the segments that may be split next to one that may not can make a worse
+        // triangle against the latter (the 1° wedge: 0.67°, Triangle 1°).
+        let theta = min_angle(switches);
+        assert!(
+            o.smallest_unexcused >= 0.5 * theta.min(t.smallest_unexcused),
+            "{numbers}: with Y our smallest unexcused angle is below half of θ and of Triangle's"
+        );
+    }
+    numbers
+}
+
+fn reference_or_fail() -> &'static Reference {
+    reference().unwrap_or_else(|| {
+        panic!("{REFERENCE_LIBRARY} is missing: install Debian's libtriangle-dev (.ci/run does)")
+    })
+}
+
+fn run_examples(filter: impl Fn(&Example) -> bool) {
+    let triangle = reference_or_fail();
+    let dir = data_dir();
+    let examples: Vec<Example> = examples(&dir).into_iter().filter(|e| filter(e)).collect();
+    assert!(
+        !examples.is_empty(),
+        "no example files in {}",
+        dir.display()
+    );
+    for example in &examples {
+        let loops = TRIANGLE_LOOPS_ON.contains(&example.name.as_str());
+        for switches in &example.switches {
+            if loops {
+                ours_alone(example, switches);
+            } else {
+                let numbers = compare(example, switches, triangle);
+                println!("{numbers}");
+            }
+        }
+    }
+}
+
+/// An input Triangle does not finish: ours must return a valid mesh of the same domain.
+fn ours_alone(example: &Example, switches: &str) {
+    let full = format!("{switches}zQ");
+    let context = format!("{}, \"{full}\"", example.name);
+    let out = ours(&full, &example.input).unwrap_or_else(|e| panic!("{context}: {e}"));
+    let mesh = MeshView::of(&out).unwrap_or_else(|e| panic!("{context}: {e}"));
+    check_constrained_delaunay(&mesh).unwrap_or_else(|e| panic!("{context}: {e}"));
+    if !switches.contains('p') && !switches.contains('r') {
+        let hull = polygon_area(&convex_hull(&example.input.points));
+        assert!(
+            (mesh.area() - hull).abs() <= 1e-9 * hull,
+            "{context}: the triangles cover {}, the convex hull {hull}",
+            mesh.area()
+        );
+    }
+    println!(
+        "{context}: {} triangles (Triangle does not finish)",
+        mesh.triangles.len()
+    );
+}
+
+#[test]
+fn triangles_polys_refine_like_triangle() {
+    run_examples(|e| e.switches.iter().any(|s| s.starts_with('p')));
+}
+
+#[test]
+fn triangles_point_sets_refine_like_triangle() {
+    run_examples(|e| {
+        e.switches
+            .iter()
+            .all(|s| !s.starts_with('p') && !s.starts_with('r'))
+    });
+}
+
+#[test]
+fn triangles_meshes_refine_like_triangle() {
+    run_examples(|e| e.switches.iter().any(|s| s.starts_with('r')));
+}
+
+/// The square of the issue, 10 × 10, with segments from (0, 0) to the right side at the given
+/// angles above the bottom side (degrees).
+fn fan(angles: &[f64]) -> Example {
+    let mut input = MeshInput {
+        points: vec![[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0]],
+        segments: vec![[0, 1], [2, 3], [3, 0]],
+        ..MeshInput::default()
+    };
+    let mut right = vec![1];
+    for &degrees in angles {
+        let y = 10.0 * degrees.to_radians().tan();
+        input.points.push([10.0, y]);
+        let v = input.points.len() as i32 - 1;
+        input.segments.push([0, v]);
+        right.push(v);
+    }
+    right.push(2);
+    input
+        .segments
+        .extend(right.windows(2).map(|w| [w[0], w[1]]));
+    let switches = ["pq", "pq25", "pq30", "pqY", "pq30a1"]
+        .map(String::from)
+        .to_vec();
+    Example {
+        name: format!("square with segments at {angles:?}°"),
+        input,
+        switches,
+    }
+}
+
+#[test]
+fn wedges_and_a_fan_refine_like_triangle() {
+    let triangle = reference_or_fail();
+    let mut cases: Vec<Example> = [1.0, 5.0, 10.0, 15.0, 25.0].map(|a| fan(&[a])).into();
+    cases.push(fan(&[5.0, 10.0]));
+    cases.push(fan(&[3.0, 8.0, 20.0, 30.0, 42.0]));
+    for example in &cases {
+        for switches in &example.switches {
+            println!("{}", compare(example, switches, triangle));
+        }
+    }
+}
+
+/// The issue's example: a 10 × 10 square with two 5° wedges at the origin, which `q` used to
+/// leave as the four triangles of the CDT.
+#[test]
+fn the_issues_five_degree_wedges_are_refined() {
+    let triangle = reference_or_fail();
+    let mut example = fan(&[]);
+    example.input.points.extend([[10.0, 0.875], [10.0, 1.763]]);
+    example.input.segments = vec![
+        [0, 1],
+        [1, 4],
+        [4, 5],
+        [5, 2],
+        [2, 3],
+        [3, 0],
+        [0, 4],
+        [0, 5],
+    ];
+    for switches in ["pq", "pq30", "pqY"] {
+        println!("{}", compare(&example, switches, triangle));
+    }
+    let out = ours("pqzQ", &example.input).unwrap();
+    assert!(
+        out.counts.triangles > 20,
+        "{} triangles",
+        out.counts.triangles
+    );
+}
