@@ -29,17 +29,16 @@
 mod common;
 
 use std::collections::{HashMap, HashSet};
-use std::path::{Path, PathBuf};
 
 use common::call::{MeshInput, Triangulation};
 use common::checks::{convex_hull, orient2d};
+use common::examples::{area_switch, data_dir, example_files, Kind};
 use common::points::Point;
 use common::pslg::{polygon_area, with_hull_segments};
 use common::pslg_checks::{check_constrained_delaunay, segment_chains, MeshView};
 use common::quality::{angles, check_areas, ANGLE_TOLERANCE};
 use common::reference::{Reference, REFERENCE_LIBRARY};
 use common::{ours, reference};
-use triangle_rs::io::files::{read_area, read_ele, read_node, read_poly};
 
 /// Our triangle count must lie within these factors of Triangle's.
 const COUNT_RANGE: (f64, f64) = (0.5, 2.0);
@@ -50,187 +49,47 @@ const EQUAL_DISTANCE: f64 = 0.01;
 /// vertices, some a rounding apart; the mesh of them it refines): meshed by us alone.
 const TRIANGLE_LOOPS_ON: &[&str] = &["greenland.node"];
 
-/// Triangle's example files: `TRIANGLE_DATA_DIR`, else the PyPI package's data directory in the
-/// repository's `.venv`. Fails with what to do when neither exists.
-fn data_dir() -> PathBuf {
-    if let Some(dir) = std::env::var_os("TRIANGLE_DATA_DIR") {
-        let dir = PathBuf::from(dir);
-        assert!(
-            dir.join("la.poly").is_file(),
-            "TRIANGLE_DATA_DIR={} holds no la.poly: point it at the data directory of the PyPI \
-             `triangle` package",
-            dir.display()
-        );
-        return dir;
-    }
-    let lib = Path::new(env!("CARGO_MANIFEST_DIR")).join(".venv/lib");
-    let found = std::fs::read_dir(&lib).ok().and_then(|entries| {
-        entries
-            .flatten()
-            .filter(|e| e.file_name().to_string_lossy().starts_with("python3"))
-            .map(|e| e.path().join("site-packages/triangle/data"))
-            .find(|d| d.join("la.poly").is_file())
-    });
-    found.unwrap_or_else(|| {
-        panic!(
-            "Triangle's example files are missing: no {}/python3*/site-packages/triangle/data \
-             (run `bash scripts/setup-python.sh`, which installs the PyPI `triangle` package, or \
-             set TRIANGLE_DATA_DIR)",
-            lib.display()
-        )
-    })
-}
-
-fn read_text(path: &Path) -> String {
-    std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
-}
-
-fn pairs(flat: &[f64]) -> Vec<Point> {
-    flat.chunks_exact(2).map(|c| [c[0], c[1]]).collect()
-}
-
-/// One input of the tests, zero-based.
+/// One input of the tests with its switch sets (without `z` and `Q`, which are appended).
 struct Example {
     name: String,
     input: MeshInput,
-    /// The switch sets (without `z` and `Q`, which are appended).
     switches: Vec<String>,
 }
 
-/// The largest power of two at most `x`: an area bound that prints exactly (Triangle reads no
-/// exponent notation).
-fn power_of_two_below(x: f64) -> f64 {
-    2f64.powi(x.log2().floor() as i32)
-}
-
-/// An area bound that makes a few hundred triangles of `points`' bounding box.
-fn area_switch(points: &[Point]) -> String {
-    let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
-    for p in points {
-        for i in 0..2 {
-            lo[i] = lo[i].min(p[i]);
-            hi[i] = hi[i].max(p[i]);
-        }
-    }
-    format!(
-        "a{}",
-        power_of_two_below((hi[0] - lo[0]) * (hi[1] - lo[1]) / 300.0)
-    )
-}
-
-/// Vertices of a `.node` file (or of a `.poly` file that has its own), zero-based.
-fn node_input(node: &triangle_rs::io::files::NodeFile) -> MeshInput {
-    MeshInput {
-        points: pairs(&node.points),
-        attributes: node.attributes.clone(),
-        attribute_count: node.attribute_count,
-        markers: node.markers.clone(),
-        ..MeshInput::default()
-    }
-}
-
-/// Every example file of `dir` as inputs with their switch sets.
-fn examples(dir: &Path) -> Vec<Example> {
-    let mut names: Vec<String> = std::fs::read_dir(dir)
-        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
-        .flatten()
-        .map(|e| e.file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
+/// Every example file of Triangle's with the switch sets of the issue for its kind.
+fn examples() -> Vec<Example> {
     let point_sets = ["q", "q30", "q33"];
-    let mut found = Vec::new();
-    for file in &names {
-        let path = dir.join(file);
-        if let Some(base) = file.strip_suffix(".poly") {
-            let poly = read_poly(&read_text(&path), file, true).unwrap_or_else(|e| panic!("{e}"));
-            if poly.vertices.point_count() == 0 {
-                continue; // the segments of a mesh (`x.1.poly`): used with its `.ele`
+    example_files(&data_dir())
+        .into_iter()
+        .map(|file| {
+            let mut switches: Vec<String> = Vec::new();
+            match file.kind {
+                Kind::Points => switches.extend(point_sets.map(String::from)),
+                Kind::Poly => {
+                    switches.extend(point_sets.map(String::from));
+                    switches.extend(
+                        ["pq", "pq30", "pq33", "pqs", "pcq30", "pqD", "pqY"].map(String::from),
+                    );
+                    switches.push(format!("pq30{}", area_switch(&file.input.points)));
+                    if !file.input.regions.is_empty() {
+                        switches.push("pqAa".into());
+                    }
+                }
+                Kind::Mesh { areas } => {
+                    switches.extend(["rpq30", "rpqD", "rpYq"].map(String::from));
+                    switches.push(format!("rpq{}", area_switch(&file.input.points)));
+                    if areas {
+                        switches.push("rpqa".into());
+                    }
+                }
             }
-            let first = poly.vertices.first_number.unwrap_or(1) as i32;
-            let mut input = node_input(&poly.vertices);
-            input.segments = poly
-                .segments
-                .chunks_exact(2)
-                .map(|s| [s[0] - first, s[1] - first])
-                .collect();
-            input.segment_markers = poly.segment_markers.clone();
-            input.holes = pairs(&poly.holes);
-            input.regions = poly
-                .regions
-                .chunks_exact(4)
-                .map(|r| [r[0], r[1], r[2], r[3]])
-                .collect();
-            let mut switches: Vec<String> = point_sets.iter().map(|s| s.to_string()).collect();
-            switches.extend(["pq", "pq30", "pq33", "pqs", "pcq30", "pqD", "pqY"].map(String::from));
-            switches.push(format!("pq30{}", area_switch(&input.points)));
-            if !input.regions.is_empty() {
-                switches.push("pqAa".into());
-            }
-            found.push(Example {
-                name: file.clone(),
-                input,
+            Example {
+                name: file.name,
+                input: file.input,
                 switches,
-            });
-        } else if let Some(base) = file.strip_suffix(".node") {
-            let numbered = base
-                .rsplit_once('.')
-                .is_some_and(|(_, n)| n.chars().all(|c| c.is_ascii_digit()));
-            if base.ends_with(".v") || numbered {
-                continue; // a Voronoi diagram, or the vertices of a mesh Triangle made
             }
-            let node = read_node(&read_text(&path), file).unwrap_or_else(|e| panic!("{e}"));
-            found.push(Example {
-                name: file.clone(),
-                input: node_input(&node),
-                switches: point_sets.iter().map(|s| s.to_string()).collect(),
-            });
-        } else if let Some(base) = file.strip_suffix(".ele") {
-            found.push(mesh_example(dir, base, &names));
-        }
-    }
-    found
-}
-
-/// The mesh `base.ele` with its `.node`, the segments of its `.poly` if there is one, and the
-/// bounds of its `.area` if there is one.
-fn mesh_example(dir: &Path, base: &str, names: &[String]) -> Example {
-    let node_file = format!("{base}.node");
-    let node =
-        read_node(&read_text(&dir.join(&node_file)), &node_file).unwrap_or_else(|e| panic!("{e}"));
-    let first = node.first_number.unwrap_or(1) as i32;
-    let ele_file = format!("{base}.ele");
-    let ele =
-        read_ele(&read_text(&dir.join(&ele_file)), &ele_file).unwrap_or_else(|e| panic!("{e}"));
-    let mut input = node_input(&node);
-    input.triangles = ele.triangles.iter().map(|v| v - first).collect();
-    input.corners = ele.corners;
-    input.triangle_attributes = ele.attributes.clone();
-    input.triangle_attribute_count = ele.attribute_count;
-    let poly_file = format!("{base}.poly");
-    if names.contains(&poly_file) {
-        let poly = read_poly(&read_text(&dir.join(&poly_file)), &poly_file, false)
-            .unwrap_or_else(|e| panic!("{e}"));
-        input.segments = poly
-            .segments
-            .chunks_exact(2)
-            .map(|s| [s[0] - first, s[1] - first])
-            .collect();
-        input.segment_markers = poly.segment_markers.clone();
-    }
-    let mut switches: Vec<String> = ["rpq30", "rpqD", "rpYq"].map(String::from).to_vec();
-    switches.push(format!("rpq{}", area_switch(&input.points)));
-    let area_file = format!("{base}.area");
-    if names.contains(&area_file) {
-        let areas = read_area(&read_text(&dir.join(&area_file)), &area_file)
-            .unwrap_or_else(|e| panic!("{e}"));
-        input.triangle_areas = Some(areas.areas);
-        switches.push("rpqa".into());
-    }
-    Example {
-        name: ele_file,
-        input,
-        switches,
-    }
+        })
+        .collect()
 }
 
 /// The angle bound of `q` in `switches` (`q` alone: 20°).
@@ -581,13 +440,8 @@ fn reference_or_fail() -> &'static Reference {
 
 fn run_examples(filter: impl Fn(&Example) -> bool) {
     let triangle = reference_or_fail();
-    let dir = data_dir();
-    let examples: Vec<Example> = examples(&dir).into_iter().filter(|e| filter(e)).collect();
-    assert!(
-        !examples.is_empty(),
-        "no example files in {}",
-        dir.display()
-    );
+    let examples: Vec<Example> = examples().into_iter().filter(|e| filter(e)).collect();
+    assert!(!examples.is_empty(), "no example files of this kind");
     for example in &examples {
         let loops = TRIANGLE_LOOPS_ON.contains(&example.name.as_str());
         for switches in &example.switches {
