@@ -5,7 +5,7 @@
 
 use std::path::{Path, PathBuf};
 
-use triangle_rs::io::files::{read_area, read_ele, read_node, read_poly, NodeFile};
+use triangle_rs::io::files::{read_area, read_ele, read_node, read_poly, NodeFile, PolyFile};
 
 use super::call::MeshInput;
 use super::points::Point;
@@ -80,6 +80,16 @@ fn node_input(node: &NodeFile) -> MeshInput {
     }
 }
 
+/// The segments of `poly` (and their markers) into `input`, numbered from `first` in the file.
+fn take_segments(input: &mut MeshInput, poly: &PolyFile, first: i32) {
+    input.segments = poly
+        .segments
+        .chunks_exact(2)
+        .map(|s| [s[0] - first, s[1] - first])
+        .collect();
+    input.segment_markers = poly.segment_markers.clone();
+}
+
 /// An area switch (`a<x>`) that makes a few hundred triangles of `points`' bounding box; `x` a
 /// power of two, which prints exactly in decimals (Triangle reads no exponent notation).
 pub fn area_switch(points: &[Point]) -> String {
@@ -112,12 +122,7 @@ pub fn example_files(dir: &Path) -> Vec<ExampleFile> {
             }
             let first = poly.vertices.first_number.unwrap_or(1) as i32;
             let mut input = node_input(&poly.vertices);
-            input.segments = poly
-                .segments
-                .chunks_exact(2)
-                .map(|s| [s[0] - first, s[1] - first])
-                .collect();
-            input.segment_markers = poly.segment_markers.clone();
+            take_segments(&mut input, &poly, first);
             input.holes = pairs(&poly.holes);
             input.regions = poly
                 .regions
@@ -168,12 +173,7 @@ fn mesh_file(dir: &Path, base: &str, names: &[String]) -> ExampleFile {
     if names.contains(&poly_file) {
         let poly = read_poly(&read_text(&dir.join(&poly_file)), &poly_file, false)
             .unwrap_or_else(|e| panic!("{e}"));
-        input.segments = poly
-            .segments
-            .chunks_exact(2)
-            .map(|s| [s[0] - first, s[1] - first])
-            .collect();
-        input.segment_markers = poly.segment_markers.clone();
+        take_segments(&mut input, &poly, first);
     }
     let area_file = format!("{base}.area");
     let areas = names.contains(&area_file);
