@@ -6,7 +6,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup-reference.sh
-# Idempotent: also completes a .venv made before a new test dependency was added.
+# Idempotent: also completes a .venv made before a new test dependency was added. Before the Rust
+# tests: their differential tests read Triangle's example files from the PyPI `triangle` package in it.
 bash scripts/setup-python.sh
 if ! cargo fmt --version >/dev/null 2>&1 || ! cargo clippy --version >/dev/null 2>&1; then
   rustup component add rustfmt clippy

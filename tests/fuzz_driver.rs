@@ -56,9 +56,13 @@ fn triangulate_through_the_c_abi() {
 
 #[test]
 fn triangulate_extreme_coordinates() {
-    let ran = drive("triangulate (extreme)", 0xF022_0002, 5_000, 160, |d| {
-        cases::triangulate(d, true)
-    });
+    let ran = drive(
+        "triangulate (extreme)",
+        0xF022_0002,
+        number_from_env("FUZZ_CASES", 5_000),
+        160,
+        |d| cases::triangulate(d, true),
+    );
     assert!(ran > 100, "only {ran} cases ran");
 }
 

@@ -20,7 +20,7 @@ use common::pslg::{self, Pslg};
 use common::pslg_checks::{
     bypasses_a_vertex, check_constrained_delaunay, pslg_differences, MeshView,
 };
-use common::{ours, reference};
+use common::{ours, reference, MeshInput};
 
 const SWITCH_SETS: &[&str] = &[
     "pQ", "pzQ", "pcQ", "pAQ", "pjQ", "peQ", "pnQ", "pOQ", "pzAjenQ", "pcAeQ", "pOAzQ",
@@ -64,12 +64,28 @@ fn compare(pslg: &Pslg, switch_sets: &[&str]) {
     }
 }
 
-/// Triangle's own example `.poly` files (read from the PyPI `triangle` package's data directory).
+/// Triangle's own example files (read from the PyPI `triangle` package's data directory): every
+/// `.poly` with its vertices, and the segments of the shipped meshes' `.poly` files with their
+/// `.node` vertices.
 #[test]
 fn triangle_example_files_match() {
-    for path in examples::files(".poly") {
-        compare(&examples::pslg(&path), SWITCH_SETS);
+    let mut compared = 0;
+    for file in examples::example_files(&examples::data_dir()) {
+        let input = match file.kind {
+            examples::Kind::Poly => file.input,
+            examples::Kind::Mesh { .. } if !file.input.segments.is_empty() => MeshInput {
+                triangles: Vec::new(),
+                triangle_attributes: Vec::new(),
+                triangle_attribute_count: 0,
+                triangle_areas: None,
+                ..file.input
+            },
+            _ => continue,
+        };
+        compare(&Pslg::new(file.name, input), SWITCH_SETS);
+        compared += 1;
     }
+    assert!(compared >= 10, "only {compared} example files compared");
 }
 
 #[test]

@@ -302,9 +302,10 @@ fn reference_satisfies_the_property_checks() {
 fn triangle_example_node_files_match() {
     let Some(triangle) = reference() else { return };
     let mut unique = 0;
-    for path in examples::files(".node") {
-        let name = examples::name(&path);
-        let input = examples::points(&path);
+    for file in examples::example_files(&examples::data_dir()) {
+        // Point sets, and the vertices of the shipped meshes.
+        let name = file.name;
+        let input = MeshInput::from_points(file.input.points);
         // The large file (greenland, 33 343 vertices) with one switch set: the debug build of
         // the checks is slow.
         let sets: &[&str] = if input.points.len() > 5000 {

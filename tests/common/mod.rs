@@ -1,6 +1,6 @@
 //! Shared helpers of the integration tests and the benchmark: a seeded RNG, point generators,
 //! safe wrappers around our C ABI and Debian's Triangle (the differential oracle), set views of
-//! outputs and the validity checks of a triangulation.
+//! outputs, the validity checks of a triangulation, and Triangle's own example files.
 #![allow(dead_code)]
 
 pub mod call;
