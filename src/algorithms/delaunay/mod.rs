@@ -11,8 +11,11 @@
 //! order ([`order::brio_order`]). Both give the same triangulation for points in general
 //! position.
 
+mod bulk;
 pub mod merge;
 pub mod order;
+
+use bulk::triangulate_in_order;
 
 use crate::geometry::{Point, Predicates};
 use crate::mesh::{triangle_of, Mesh, GHOST, NONE};
@@ -323,42 +326,6 @@ pub fn triangulate<P: Predicates>(points: Vec<Point>, order: &[u32]) -> Triangul
     let mut triangulation = Triangulation { mesh, duplicate_of };
     triangulation.keep_first_copies();
     triangulation
-}
-
-/// Triangulates `points` inserting them in index order; returns the mesh and, per vertex, the
-/// vertex it duplicates (or [`NONE`]).
-fn triangulate_in_order<P: Predicates>(points: Vec<Point>) -> (Mesh, Vec<u32>) {
-    let n = points.len() as u32;
-    let mut duplicate_of = vec![NONE; n as usize];
-    let mut mesh = Mesh::with_points(points);
-    // Seed triangle: the first point, the first point distinct from it, and the first point not
-    // collinear with those two.
-    if n == 0 {
-        return (mesh, duplicate_of);
-    }
-    let pa = mesh.point(0);
-    let Some(b) = (1..n).find(|&v| mesh.point(v) != pa) else {
-        return (mesh, duplicate_of);
-    };
-    let pb = mesh.point(b);
-    let Some(c) = (b + 1..n).find(|&v| P::orient2d(pa, pb, mesh.point(v)) != 0.0) else {
-        return (mesh, duplicate_of);
-    };
-    if P::orient2d(pa, pb, mesh.point(c)) > 0.0 {
-        mesh.init_triangle(0, b, c);
-    } else {
-        mesh.init_triangle(0, c, b);
-    }
-    let mut inserter = Inserter::<P>::new(mesh);
-    for v in 1..n {
-        if v == b || v == c {
-            continue;
-        }
-        if let Err(u) = inserter.insert(v) {
-            duplicate_of[v as usize] = u;
-        }
-    }
-    (inserter.mesh, duplicate_of)
 }
 
 #[cfg(test)]
