@@ -7,7 +7,7 @@ use crate::algorithms::domain::{carve, Domain};
 use crate::algorithms::reconstruct::reconstruct;
 use crate::algorithms::refine::{Quality, Refiner, VertexKind};
 use crate::algorithms::voronoi::voronoi_diagram;
-use crate::assemble::FinishedMesh;
+use crate::assemble::{self, FinishedMesh};
 use crate::data::{Hooks, Input, Output, VoronoiOutput};
 use crate::error::Error;
 use crate::geometry::{Exact, Inexact, Point, Predicates};
@@ -131,6 +131,9 @@ fn run<P: Predicates>(
         }
         (mesh, duplicate_of)
     };
+    if !options.refine && assemble::plain_delaunay(options) && mesh.triangle_count() > 0 {
+        return Ok(assemble::delaunay_outputs(options, input, mesh, output));
+    }
     let k = input.point_attribute_count;
     let mut meshed = Meshed {
         point_attributes: input.point_attributes.to_vec(),
