@@ -12,11 +12,22 @@ use crate::geometry::{Point, Predicates};
 use crate::mesh::{next, prev, triangle_of, Mesh, GHOST, NONE};
 
 /// Triangulates `points` inserting them in index order; returns the mesh and, per vertex, the
-/// vertex it duplicates (or [`NONE`]).
-pub(super) fn triangulate_in_order<P: Predicates>(points: Vec<Point>) -> (Mesh, Vec<u32>) {
+/// vertex it duplicates (or [`NONE`]). The mesh's arrays have room for `capacity` triangle
+/// slots (at least the `2n + 2` that the build may use): a caller that appends more triangles
+/// later asks for them here, so that no array is reallocated (and copied) on the way.
+pub(super) fn triangulate_in_order<P: Predicates>(
+    points: Vec<Point>,
+    capacity: usize,
+) -> (Mesh, Vec<u32>) {
     let n = points.len() as u32;
     let mut duplicate_of = vec![NONE; n as usize];
-    let mut mesh = Mesh::with_points(points);
+    let capacity = 3 * capacity.max(2 * points.len() + 2);
+    let mut mesh = Mesh {
+        points,
+        corners: Vec::with_capacity(capacity),
+        twins: Vec::with_capacity(capacity),
+        ..Mesh::default()
+    };
     // Seed triangle: the first point, the first point distinct from it, and the first point not
     // collinear with those two.
     if n == 0 {
@@ -104,7 +115,7 @@ impl<P: Predicates> Builder<P> {
         let mesh = &mut self.mesh;
         let len = mesh.corners.len();
         if mesh.corners.capacity() - len < 6 || mesh.twins.capacity() - len < 6 {
-            // Not reached: `Mesh::with_points` reserves the 2n triangles that n points make.
+            // Not reached: n points make at most 2n - 2 triangle slots, and 2n + 2 are reserved.
             mesh.corners.reserve(6);
             mesh.twins.reserve(6);
         }

@@ -27,12 +27,14 @@ struct Half {
     duplicate_of: Vec<(u32, u32)>,
 }
 
-fn triangulate_half<P: Predicates>(points: &[Point], ids: &[u32]) -> Option<Half> {
+/// Triangulates the points `ids` in a mesh with room for `capacity` triangle slots.
+fn triangulate_half<P: Predicates>(points: &[Point], ids: &[u32], capacity: usize) -> Option<Half> {
     let local_points: Vec<Point> = ids.iter().map(|&v| points[v as usize]).collect();
     let order = multiscale_order(&local_points);
     let sorted: Vec<Point> = order.iter().map(|&i| local_points[i as usize]).collect();
+    drop(local_points);
     let global = |i: u32| ids[order[i as usize] as usize];
-    let (mut mesh, duplicates) = triangulate_in_order::<P>(sorted);
+    let (mut mesh, duplicates) = triangulate_in_order::<P>(sorted, capacity);
     if mesh.triangle_count() == 0 {
         return None;
     }
@@ -77,15 +79,18 @@ pub fn triangulate_two_halves<P: Predicates>(
             right.push(v);
         }
     }
+    drop(ids);
     if left.len() < 3 || right.len() < 3 {
         return Err(points);
     }
+    // The left mesh gets room for both halves' triangles (2n - 4 slots, and the two ghosts of
+    // the merge): the right half's are appended without reallocating.
     let (l, r) = std::thread::scope(|scope| {
-        let right_job = scope.spawn(|| triangulate_half::<P>(&points, &right));
-        let l = triangulate_half::<P>(&points, &left);
+        let right_job = scope.spawn(|| triangulate_half::<P>(&points, &right, 0));
+        let l = triangulate_half::<P>(&points, &left, 2 * n + 4);
         (l, right_job.join().ok().flatten())
     });
-    let (Some(l), Some(r)) = (l, r) else {
+    let (Some(l), Some(mut r)) = (l, r) else {
         return Err(points);
     };
     let mut duplicate_of = vec![NONE; n];
@@ -95,9 +100,14 @@ pub fn triangulate_two_halves<P: Predicates>(
     // One mesh: the right half's triangles after the left half's.
     let offset = 3 * l.mesh.triangle_count();
     let mut mesh = l.mesh;
-    mesh.corners.extend_from_slice(&r.mesh.corners);
-    mesh.twins.extend(r.mesh.twins.iter().map(|&f| f + offset));
     mesh.points = points;
+    drop(std::mem::take(&mut r.mesh.points));
+    let right_corners = std::mem::take(&mut r.mesh.corners);
+    let right_twins = std::mem::take(&mut r.mesh.twins);
+    mesh.corners.extend_from_slice(&right_corners);
+    drop(right_corners);
+    mesh.twins.extend(right_twins.iter().map(|&f| f + offset));
+    drop(right_twins);
     let mut merger = Merger::<P> {
         mesh,
         _p: Default::default(),

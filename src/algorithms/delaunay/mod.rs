@@ -310,7 +310,7 @@ impl<P: Predicates> Inserter<P> {
 /// caller's indices at the end.
 pub fn triangulate<P: Predicates>(points: Vec<Point>, order: &[u32]) -> Triangulation {
     let sorted: Vec<Point> = order.iter().map(|&v| points[v as usize]).collect();
-    let (mut mesh, sorted_duplicate_of) = triangulate_in_order::<P>(sorted);
+    let (mut mesh, sorted_duplicate_of) = triangulate_in_order::<P>(sorted, 0);
     for c in mesh.corners.iter_mut() {
         if *c != GHOST {
             *c = order[*c as usize];
