@@ -9,7 +9,7 @@
 
 use super::Location;
 use crate::geometry::{Point, Predicates};
-use crate::mesh::{next, prev, triangle_of, Mesh, GHOST, NONE};
+use crate::mesh::{next, triangle_of, Mesh, GHOST, NONE};
 
 /// Triangulates `points` inserting them in index order; returns the mesh and, per vertex, the
 /// vertex it duplicates (or [`NONE`]). The mesh's arrays have room for `capacity` triangle
@@ -63,6 +63,12 @@ pub(super) fn triangulate_in_order<P: Predicates>(
     }
     (builder.mesh, duplicate_of)
 }
+
+/// The slot after and before each slot of a triangle.
+const NEXT_SLOT: [usize; 3] = [1, 2, 0];
+const PREV_SLOT: [usize; 3] = [2, 0, 1];
+/// The three slots starting from each one.
+const ROTATED: [[usize; 3]; 3] = [[0, 1, 2], [1, 2, 0], [2, 0, 1]];
 
 struct Builder<P: Predicates> {
     mesh: Mesh,
@@ -200,24 +206,32 @@ impl<P: Predicates> Builder<P> {
             self.rng ^= self.rng << 13;
             self.rng ^= self.rng >> 17;
             self.rng ^= self.rng << 5;
-            let offset = self.rng % 3;
+            let offset = (self.rng % 3) as usize;
             let base = 3 * t;
+            // The three corners and their points, read once; edge `k` runs from corner `k` to
+            // corner `k + 1`.
+            let corners = [
+                self.corner(base),
+                self.corner(base + 1),
+                self.corner(base + 2),
+            ];
             let mut zeros = [NONE; 2];
             let mut zero_count = 0;
             for k in 0..3 {
-                let slot = offset + k;
-                let e = base + if slot >= 3 { slot - 3 } else { slot };
+                let slot = ROTATED[offset][k];
+                let e = base + slot as u32;
                 if e == entry {
                     continue;
                 }
-                let (a, b) = (self.corner(e), self.corner(next(e)));
+                let (a, b) = (corners[slot], corners[NEXT_SLOT[slot]]);
                 let o = P::orient2d(self.point(a), self.point(b), p);
                 if o < 0.0 {
                     let f = self.twin(e);
-                    if self.corner(prev(f)) == GHOST {
-                        return Location::Outside(triangle_of(f));
+                    let (t_f, slot_f) = (f / 3, (f % 3) as usize);
+                    if self.corner(3 * t_f + PREV_SLOT[slot_f] as u32) == GHOST {
+                        return Location::Outside(t_f);
                     }
-                    t = triangle_of(f);
+                    t = t_f;
                     entry = f;
                     continue 'walk;
                 }
@@ -288,7 +302,9 @@ impl<P: Predicates> Builder<P> {
     fn legalize(&mut self, p: Point, grows_hull: bool) {
         while let Some(e) = self.stack.pop() {
             let f = self.twin(e);
-            let (a, b, d) = (self.corner(e), self.corner(e + 1), self.corner(prev(f)));
+            let (t_f, slot_f) = (f / 3, (f % 3) as usize);
+            let (a, b) = (self.corner(e), self.corner(e + 1));
+            let d = self.corner(3 * t_f + PREV_SLOT[slot_f] as u32);
             let illegal = if a != GHOST && b != GHOST && d != GHOST {
                 P::incircle(self.point(b), self.point(a), self.point(d), p) > 0.0
             } else if a == GHOST || b == GHOST {
@@ -303,21 +319,27 @@ impl<P: Predicates> Builder<P> {
                 P::orient2d(self.point(b), self.point(a), p) > 0.0
             };
             if illegal {
-                self.flip(e, f, [a, b, d]);
+                self.flip(e, t_f, slot_f, [a, b, d]);
             } else {
                 self.last = triangle_of(e);
             }
         }
     }
 
-    /// [`Mesh::flip`] without the tracking: `(a, b, p)` at `e` (slot 0) and `(b, a, q)` at `f`
-    /// become `(a, q, p)` and `(q, b, p)` (slot 0 opposite `p`), whose slot-0 edges are stacked.
+    /// [`Mesh::flip`] without the tracking: `(a, b, p)` at `e` (slot 0) and `(b, a, q)` with its
+    /// half-edge `b → a` in slot `slot_f` of triangle `t2` become `(a, q, p)` and `(q, b, p)`
+    /// (slot 0 opposite `p`), whose slot-0 edges are stacked.
+
     #[inline(always)]
-    fn flip(&mut self, e: u32, f: u32, [a, b, q]: [u32; 3]) {
-        let (t1, t2) = (triangle_of(e), triangle_of(f));
+    fn flip(&mut self, e: u32, t2: u32, slot_f: usize, [a, b, q]: [u32; 3]) {
+        let t1 = triangle_of(e);
         let p = self.corner(e + 2);
         let (tw_bp, tw_pa) = (self.twin(e + 1), self.twin(e + 2));
-        let (tw_aq, tw_qb) = (self.twin(next(f)), self.twin(prev(f)));
+        let base_f = 3 * t2;
+        let (tw_aq, tw_qb) = (
+            self.twin(base_f + NEXT_SLOT[slot_f] as u32),
+            self.twin(base_f + PREV_SLOT[slot_f] as u32),
+        );
         self.set_corners(t1, [a, q, p]);
         self.set_corners(t2, [q, b, p]);
         let (g1, g2) = (3 * t1, 3 * t2);
