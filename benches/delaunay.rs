@@ -18,11 +18,12 @@ mod common;
 use std::os::raw::{c_char, c_void};
 use std::time::Duration;
 
-use common::call::{ours_status, run_call, MeshInput, Triangulation};
-use common::checks::canonical_triangle;
+use common::call::{ours_status, run_call, MeshInput};
 use common::points::{self, Point};
 use common::reference::Reference;
-use common::timing::{benchmarking, median, number_from_env, sizes_from_env, Times};
+use common::timing::{
+    benchmarking, median, number_from_env, sizes_from_env, sorted_triangles, Times,
+};
 use triangle_rs::io::triangulateio::TriangulateIO;
 
 const SWITCHES: &str = "Qz";
@@ -104,16 +105,6 @@ fn on_one_core<T>(work: impl FnOnce() -> T) -> T {
         libc::sched_setaffinity(0, size, &saved);
         result
     }
-}
-
-fn sorted_triangles(mesh: &Triangulation) -> Vec<[i32; 3]> {
-    let mut triangles: Vec<[i32; 3]> = mesh
-        .triangle_triples()
-        .into_iter()
-        .map(canonical_triangle)
-        .collect();
-    triangles.sort_unstable();
-    triangles
 }
 
 /// One call through the C ABI (ours or Triangle's), measured around the C call alone.

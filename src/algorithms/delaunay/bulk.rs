@@ -7,7 +7,7 @@
 //!
 //! The result is the same mesh as [`super::Inserter`] builds (same triangles, same slots).
 
-use super::Location;
+use super::{location_in_triangle, Location};
 use crate::geometry::{Point, Predicates};
 use crate::mesh::{next, triangle_of, Mesh, GHOST, NONE};
 
@@ -217,8 +217,7 @@ impl<P: Predicates> Builder<P> {
             ];
             let mut zeros = [NONE; 2];
             let mut zero_count = 0;
-            for k in 0..3 {
-                let slot = ROTATED[offset][k];
+            for &slot in &ROTATED[offset] {
                 let e = base + slot as u32;
                 if e == entry {
                     continue;
@@ -240,25 +239,13 @@ impl<P: Predicates> Builder<P> {
                     zero_count += 1;
                 }
             }
-            return match zero_count {
-                0 => Location::InTriangle(t),
-                1 => Location::OnEdge(zeros[0]),
-                _ => {
-                    // On two edges: at their shared vertex.
-                    let (e1, e2) = (zeros[0], zeros[1]);
-                    let v = if self.corner(e1) == self.corner(next(e2)) {
-                        self.corner(e1)
-                    } else {
-                        self.corner(e2)
-                    };
-                    if self.point(v) == p {
-                        Location::OnVertex(v)
-                    } else {
-                        // Inexact arithmetic only: treat as on the first edge.
-                        Location::OnEdge(e1)
-                    }
-                }
-            };
+            return location_in_triangle(
+                t,
+                &zeros[..zero_count],
+                p,
+                |e| (self.corner(e), self.corner(next(e))),
+                |v| self.point(v),
+            );
         }
     }
 
@@ -329,7 +316,6 @@ impl<P: Predicates> Builder<P> {
     /// [`Mesh::flip`] without the tracking: `(a, b, p)` at `e` (slot 0) and `(b, a, q)` with its
     /// half-edge `b → a` in slot `slot_f` of triangle `t2` become `(a, q, p)` and `(q, b, p)`
     /// (slot 0 opposite `p`), whose slot-0 edges are stacked.
-
     #[inline(always)]
     fn flip(&mut self, e: u32, t2: u32, slot_f: usize, [a, b, q]: [u32; 3]) {
         let t1 = triangle_of(e);

@@ -16,7 +16,7 @@
 use super::{triangulate_in_order, Triangulation};
 use crate::algorithms::delaunay::order::multiscale_order;
 use crate::geometry::{Point, Predicates};
-use crate::mesh::{Mesh, GHOST, NONE};
+use crate::mesh::{triangle_of, Mesh, GHOST, NONE};
 
 /// Below this many points one thread is faster than two.
 pub const PARALLEL_THRESHOLD: usize = 20_000;
@@ -129,19 +129,30 @@ struct Hull {
 }
 
 impl Hull {
+    /// Walks the ring of ghost triangles of the half in `triangles` (each ghost's neighbour
+    /// across its half-edge from the vertex at infinity is the next ghost around the hull), from
+    /// the first ghost in the range: O(hull) after that search, not a scan of the whole half.
     fn read(mesh: &Mesh, triangles: std::ops::Range<u32>) -> Hull {
         let mut succ = std::collections::HashMap::new();
-        let mut entries: Vec<(u32, u32, u32)> = Vec::new(); // (y, x, ghost): hull edge y→x
-        for t in triangles {
-            if let Some((x, y)) = ghost_edge(mesh, t) {
-                entries.push((y, x, t));
+        let slots = triangles.len();
+        let first = triangles
+            .into_iter()
+            .find(|&t| ghost_edge(mesh, t).is_some())
+            .expect("a triangulated half has a hull");
+        let mut ghost = first;
+        for _ in 0..slots {
+            let c = mesh.triangle(ghost);
+            let k = c.iter().position(|&v| v == GHOST).expect("a ghost");
+            // Hull edge y → x (the ghost's finite half-edge is x → y).
+            let (x, y) = (c[(k + 1) % 3], c[(k + 2) % 3]);
+            let y_entry = succ.entry(y).or_insert((NONE, NONE, NONE, NONE));
+            (y_entry.0, y_entry.2) = (x, ghost);
+            let x_entry = succ.entry(x).or_insert((NONE, NONE, NONE, NONE));
+            (x_entry.1, x_entry.3) = (y, ghost);
+            ghost = triangle_of(mesh.twin(3 * ghost + k as u32));
+            if ghost == first {
+                break;
             }
-        }
-        for &(y, x, t) in &entries {
-            succ.entry(y).or_insert((NONE, NONE, NONE, NONE)).0 = x;
-            succ.entry(y).or_insert((NONE, NONE, NONE, NONE)).2 = t;
-            succ.entry(x).or_insert((NONE, NONE, NONE, NONE)).1 = y;
-            succ.entry(x).or_insert((NONE, NONE, NONE, NONE)).3 = t;
         }
         Hull { succ }
     }
@@ -491,7 +502,7 @@ mod tests {
             let (cx, cy) = ((c % 5) as f64 * 10.0, (c / 5) as f64 * 10.0);
             for _ in 0..200 {
                 let r = splitmix64(&mut s) as f64 / u64::MAX as f64 * 1e-3;
-                let a = splitmix64(&mut s) as f64 / u64::MAX as f64 * 6.283;
+                let a = splitmix64(&mut s) as f64 / u64::MAX as f64 * std::f64::consts::TAU;
                 pts.push([cx + r * a.cos(), cy + r * a.sin()]);
             }
         }

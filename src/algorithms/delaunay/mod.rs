@@ -33,6 +33,33 @@ pub enum Location {
     Outside(u32),
 }
 
+/// The location of `p` in triangle `t`, where a walk found it on no edge's far side and on the
+/// edges `zeros` (half-edges of `t`, at most two; `ends` gives a half-edge's origin and
+/// destination): inside, on the one edge, or at the vertex the two share.
+#[inline(always)]
+fn location_in_triangle(
+    t: u32,
+    zeros: &[u32],
+    p: Point,
+    ends: impl Fn(u32) -> (u32, u32),
+    point: impl Fn(u32) -> Point,
+) -> Location {
+    match *zeros {
+        [] => Location::InTriangle(t),
+        [e] => Location::OnEdge(e),
+        [e1, e2, ..] => {
+            let ((o1, _), (o2, d2)) = (ends(e1), ends(e2));
+            let v = if o1 == d2 { o1 } else { o2 };
+            if point(v) == p {
+                Location::OnVertex(v)
+            } else {
+                // Inexact arithmetic only: treat as on the first edge.
+                Location::OnEdge(e1)
+            }
+        }
+    }
+}
+
 /// The result of triangulating a point set.
 #[derive(Clone, Debug, Default)]
 pub struct Triangulation {
@@ -178,25 +205,14 @@ impl<P: Predicates> Inserter<P> {
                     zero_count += 1;
                 }
             }
-            return match zero_count {
-                0 => Location::InTriangle(t),
-                1 => Location::OnEdge(zeros[0]),
-                _ => {
-                    // On two edges: at their shared vertex.
-                    let (e1, e2) = (zeros[0], zeros[1]);
-                    let v = if self.mesh.origin(e1) == self.mesh.dest(e2) {
-                        self.mesh.origin(e1)
-                    } else {
-                        self.mesh.origin(e2)
-                    };
-                    if self.mesh.point(v) == p {
-                        Location::OnVertex(v)
-                    } else {
-                        // Inexact arithmetic only: treat as on the first edge.
-                        Location::OnEdge(e1)
-                    }
-                }
-            };
+            let m = &self.mesh;
+            return location_in_triangle(
+                t,
+                &zeros[..zero_count],
+                p,
+                |e| (m.origin(e), m.dest(e)),
+                |v| m.point(v),
+            );
         }
     }
 

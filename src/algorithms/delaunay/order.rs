@@ -150,7 +150,7 @@ fn radix_sort_by_high_half(mut keys: Vec<u64>) -> Vec<u64> {
     let mut other = vec![0u64; keys.len()];
     for (pass, &(shift, bits)) in PASSES.iter().enumerate() {
         let counts = &mut counts[pass];
-        if counts.iter().any(|&c| c == keys.len()) {
+        if counts.contains(&keys.len()) {
             continue; // one digit value for all keys: this pass would not move anything
         }
         let mut start = 0;
