@@ -1,27 +1,314 @@
-//! Delaunay triangulation of N uniform random points (seeded; N = 10^6 unless env `N` says
-//! otherwise): our `triangulate` through the C ABI against Debian's Triangle 1.6 in the same
-//! process, interleaved (ours, Triangle, ours, Triangle, …), `REPS` repetitions each (at least 3,
-//! default 5). (Under `cargo test --all-targets` it runs as a smoke test with 2000 points.) Prints the medians of wall-clock and process CPU time and the ratios, and checks
-//! that the two triangle sets are identical. Run with `cargo bench --bench delaunay`.
+//! The Delaunay race (issue 14): N uniform random points (seeded), triangulated in one process by
+//! Debian's Triangle 1.6, ours on one core and on two threads (both through the C ABI, switches
+//! `Qz`), and the Rust peers spade, cdt and delaunator, interleaved round-robin `REPS` times
+//! (default 3). Prints one table per size: median wall-clock and CPU seconds, Triangle's median
+//! times divided by each one's (wall and CPU: the machine is shared), peak memory per vertex (growth of VmHWM over VmRSS during
+//! the call, outputs included) and the triangle count; checks that our triangle sets are
+//! Triangle's.
+//!
+//! Sizes: env `N`, a comma-separated list (default 1_000_000; e.g. `N=1000000,4000000`).
+//! "One core" pins the calling thread to one CPU for the call: our merge asks
+//! `std::thread::available_parallelism`, which then says 1, and triangulates on that thread.
+//! Run with `cargo bench --bench delaunay`. Under `cargo test --all-targets` it runs as a smoke
+//! test (2000 points, one repetition, same checks).
 
 #[path = "../tests/common/mod.rs"]
 mod common;
 
-use common::points;
-use common::timing::{benchmarking, compare_interleaved, number_from_env};
-use common::MeshInput;
+use std::os::raw::{c_char, c_void};
+use std::time::Duration;
+
+use common::call::{ours_status, run_call, MeshInput};
+use common::points::{self, Point};
+use common::reference::Reference;
+use common::timing::{
+    benchmarking, median, number_from_env, sizes_from_env, sorted_triangles, Times,
+};
+use triangle_rs::io::triangulateio::TriangulateIO;
 
 const SWITCHES: &str = "Qz";
+const SEED: u64 = 0x5EED_0001;
+
+#[derive(Clone, Copy, PartialEq)]
+enum Contestant {
+    Triangle,
+    OursOneCore,
+    OursTwoThreads,
+    Spade,
+    Cdt,
+    Delaunator,
+}
+
+impl Contestant {
+    fn name(self) -> &'static str {
+        match self {
+            Contestant::Triangle => "Triangle 1.6",
+            Contestant::OursOneCore => "triangle-rs, 1 core",
+            Contestant::OursTwoThreads => "triangle-rs, 2 threads",
+            Contestant::Spade => "spade",
+            Contestant::Cdt => "cdt",
+            Contestant::Delaunator => "delaunator",
+        }
+    }
+}
+
+/// One run: its times, the peak memory growth in bytes, the triangle count, and (Triangle and
+/// ours) the sorted canonical triangles.
+struct Run {
+    times: Times,
+    peak_bytes: u64,
+    triangles: usize,
+    triangle_set: Option<Vec<[i32; 3]>>,
+}
+
+/// A field of /proc/self/status in bytes (0 where unreadable).
+fn status_bytes(field: &str) -> u64 {
+    let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
+    status
+        .lines()
+        .find_map(|line| line.strip_prefix(field))
+        .and_then(|rest| {
+            rest.trim()
+                .trim_end_matches("kB")
+                .trim()
+                .parse::<u64>()
+                .ok()
+        })
+        .map_or(0, |kb| kb * 1024)
+}
+
+/// Runs `work` and measures its time and its peak memory growth: the kernel's high-water mark
+/// is reset (`clear_refs` 5) to the current resident size first, then read while `work`'s result
+/// (the outputs) is still alive.
+fn measured<T>(work: impl FnOnce() -> T) -> (Times, u64, T) {
+    // SAFETY: no arguments to check; returns free heap memory to the system, so that memory
+    // freed by earlier runs and still resident does not hide this run's growth.
+    unsafe { libc::malloc_trim(0) };
+    let _ = std::fs::write("/proc/self/clear_refs", "5");
+    let before = status_bytes("VmRSS:");
+    let (times, result) = Times::measure(work);
+    let peak = status_bytes("VmHWM:").saturating_sub(before);
+    (times, peak, result)
+}
+
+/// Pins the calling thread to the CPU it runs on for `work`, then restores its affinity.
+fn on_one_core<T>(work: impl FnOnce() -> T) -> T {
+    // SAFETY: cpu_set_t is plain data; the calls get valid pointers and their true size.
+    unsafe {
+        let mut saved: libc::cpu_set_t = std::mem::zeroed();
+        let size = std::mem::size_of::<libc::cpu_set_t>();
+        libc::sched_getaffinity(0, size, &mut saved);
+        let mut one: libc::cpu_set_t = std::mem::zeroed();
+        libc::CPU_SET(libc::sched_getcpu().max(0) as usize, &mut one);
+        libc::sched_setaffinity(0, size, &one);
+        let result = work();
+        libc::sched_setaffinity(0, size, &saved);
+        result
+    }
+}
+
+/// One call through the C ABI (ours or Triangle's), measured around the C call alone.
+fn c_abi_run(reference: Option<&'static Reference>, one_core: bool, input: &MeshInput) -> Run {
+    let measurement = std::cell::Cell::new(None);
+    let call = |s: *mut c_char, i: *mut TriangulateIO, o: *mut TriangulateIO, v| {
+        let (times, peak, result) = measured(|| match reference {
+            // SAFETY: valid switches and structs prepared by `run_call`; uniform points, which
+            // Triangle accepts.
+            Some(r) => unsafe {
+                r.triangulate_raw(s, i, o, v);
+                Ok(())
+            },
+            None => {
+                // SAFETY: as above, for our exported function.
+                let ours = || ours_status(unsafe { triangle_rs::ffi::triangulate(s, i, o, v) });
+                if one_core {
+                    on_one_core(ours)
+                } else {
+                    ours()
+                }
+            }
+        });
+        measurement.set(Some((times, peak)));
+        result
+    };
+    let free = |p: *mut c_void| match reference {
+        // SAFETY: arrays from Triangle are freed with its trifree, ours with ours.
+        Some(r) => unsafe { r.trifree(p) },
+        None => unsafe { triangle_rs::ffi::trifree(p) },
+    };
+    let mesh = run_call(&call, &free, SWITCHES, input, false)
+        .unwrap_or_else(|message| panic!("triangulate failed: {message}"));
+    let (times, peak_bytes) = measurement.get().expect("the call ran");
+    let triangle_set = sorted_triangles(&mesh);
+    Run {
+        times,
+        peak_bytes,
+        triangles: triangle_set.len(),
+        triangle_set: Some(triangle_set),
+    }
+}
+
+fn peer_run(contestant: Contestant, points: &[Point]) -> Run {
+    let (times, peak_bytes, triangles) = match contestant {
+        Contestant::Spade => {
+            use spade::Triangulation as _;
+            let vertices: Vec<spade::Point2<f64>> = points
+                .iter()
+                .map(|p| spade::Point2::new(p[0], p[1]))
+                .collect();
+            measured(|| {
+                spade::DelaunayTriangulation::<spade::Point2<f64>>::bulk_load(vertices)
+                    .expect("spade")
+                    .num_inner_faces()
+            })
+        }
+        Contestant::Cdt => {
+            let pairs: Vec<(f64, f64)> = points.iter().map(|p| (p[0], p[1])).collect();
+            measured(|| cdt::triangulate_points(&pairs).expect("cdt").len())
+        }
+        Contestant::Delaunator => {
+            let converted: Vec<delaunator::Point> = points
+                .iter()
+                .map(|p| delaunator::Point { x: p[0], y: p[1] })
+                .collect();
+            measured(|| delaunator::triangulate(&converted).triangles.len() / 3)
+        }
+        _ => unreachable!("not a peer"),
+    };
+    Run {
+        times,
+        peak_bytes,
+        triangles,
+        triangle_set: None,
+    }
+}
 
 fn main() {
-    let n = number_from_env("N", if benchmarking() { 1_000_000 } else { 2_000 });
-    let reps = number_from_env("REPS", 5).max(3);
-    let input = MeshInput::from_points(points::uniform(n, 0x5EED_0001));
+    let (sizes, reps) = if benchmarking() {
+        (
+            sizes_from_env("N", &[1_000_000]),
+            number_from_env("REPS", 3).max(1),
+        )
+    } else {
+        (vec![2_000], 1)
+    };
+    // Large blocks always from mmap (no dynamic threshold): freed, they leave the process, and
+    // each run's growth is its own.
+    // SAFETY: a valid mallopt parameter and value, set before the runs allocate.
+    unsafe { libc::mallopt(libc::M_MMAP_THRESHOLD, 128 * 1024) };
     let reference = common::reference();
-
-    println!("Delaunay triangulation of {n} uniform random points, switches \"{SWITCHES}\", {reps} interleaved repetitions");
-    compare_interleaved(SWITCHES, &input, reps, reference, "");
+    let mut contestants = vec![
+        Contestant::OursOneCore,
+        Contestant::OursTwoThreads,
+        Contestant::Spade,
+        Contestant::Cdt,
+        Contestant::Delaunator,
+    ];
+    if reference.is_some() {
+        contestants.insert(0, Contestant::Triangle);
+    }
+    for n in sizes {
+        let points = points::uniform(n, SEED);
+        let input = MeshInput::from_points(points.clone());
+        let mut runs: Vec<Vec<Run>> = contestants.iter().map(|_| Vec::new()).collect();
+        for _ in 0..reps {
+            for (k, &c) in contestants.iter().enumerate() {
+                let run = match c {
+                    Contestant::Triangle => c_abi_run(reference, false, &input),
+                    Contestant::OursOneCore => c_abi_run(None, true, &input),
+                    Contestant::OursTwoThreads => c_abi_run(None, false, &input),
+                    _ => peer_run(c, &points),
+                };
+                runs[k].push(run);
+            }
+        }
+        print_table(n, reps, &contestants, &runs);
+        check_identical(&contestants, &runs);
+    }
     if reference.is_none() {
-        println!("Triangle:     not installed, no comparison");
+        println!("Triangle 1.6: not installed, no comparison");
+    }
+}
+
+fn print_table(n: usize, reps: usize, contestants: &[Contestant], runs: &[Vec<Run>]) {
+    let medians: Vec<(Times, u64)> = runs
+        .iter()
+        .map(|r| {
+            let times: Vec<Times> = r.iter().map(|run| run.times).collect();
+            let peaks: Vec<Duration> = r
+                .iter()
+                .map(|run| Duration::from_nanos(run.peak_bytes))
+                .collect();
+            (Times::median(&times), median(peaks).as_nanos() as u64)
+        })
+        .collect();
+    let triangle = contestants
+        .iter()
+        .position(|&c| c == Contestant::Triangle)
+        .map(|k| medians[k].0);
+    println!(
+        "Delaunay triangulation of {n} uniform random points, medians of {reps} interleaved run(s)"
+    );
+    println!(
+        "| {:<22} | {:>7} | {:>7} | {:>20} | {:>13} | {:>9} |",
+        "", "wall s", "cpu s", "Triangle's / ours", "peak B/vertex", "triangles"
+    );
+    println!(
+        "|{:-<24}|{:->9}|{:->9}|{:->22}|{:->15}|{:->11}|",
+        "", "", "", "", "", ""
+    );
+    for (k, &c) in contestants.iter().enumerate() {
+        let (times, peak) = medians[k];
+        let ratio = triangle.map_or("—".to_string(), |t| {
+            format!(
+                "{:.2}× wall {:.2}× cpu",
+                t.wall.as_secs_f64() / times.wall.as_secs_f64(),
+                t.cpu.as_secs_f64() / times.cpu.as_secs_f64()
+            )
+        });
+        println!(
+            "| {:<22} | {:>7.3} | {:>7.3} | {:>20} | {:>13.0} | {:>9} |",
+            c.name(),
+            times.wall.as_secs_f64(),
+            times.cpu.as_secs_f64(),
+            ratio,
+            peak as f64 / n as f64,
+            runs[k].last().map_or(0, |r| r.triangles)
+        );
+    }
+}
+
+/// Our triangle sets (both ways) are Triangle's; every contestant found the same number.
+fn check_identical(contestants: &[Contestant], runs: &[Vec<Run>]) {
+    let last = |c: Contestant| {
+        contestants
+            .iter()
+            .position(|&x| x == c)
+            .and_then(|k| runs[k].last())
+    };
+    let ours = last(Contestant::OursOneCore).expect("ours ran");
+    let two = last(Contestant::OursTwoThreads).expect("ours ran");
+    assert!(
+        ours.triangle_set == two.triangle_set,
+        "one core and two threads differ"
+    );
+    if let Some(triangle) = last(Contestant::Triangle) {
+        assert!(
+            ours.triangle_set == triangle.triangle_set,
+            "the triangle sets differ: {} triangles (ours) vs {} (Triangle's)",
+            ours.triangles,
+            triangle.triangles
+        );
+        println!(
+            "our triangle sets are Triangle's ({} triangles)",
+            triangle.triangles
+        );
+    }
+    for r in runs {
+        let count = r.last().map_or(0, |run| run.triangles);
+        assert_eq!(
+            count, ours.triangles,
+            "a contestant found another triangle count"
+        );
     }
 }

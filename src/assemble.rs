@@ -6,9 +6,100 @@
 //! marker of a non-zero segment it lies on, else 1 on a boundary, else 0; a segment or edge gets its
 //! segment's marker, else 1 on a boundary, else 0.
 
-use crate::data::Output;
+use crate::data::{Input, Output, VoronoiOutput};
 use crate::mesh::{triangle_of, Mesh, GHOST, NONE};
 use crate::options::Options;
+
+/// Whether the outputs of a Delaunay triangulation of the input points can be built by
+/// [`delaunay_outputs`]: no segments, no refinement and no output that needs edges, neighbours,
+/// a renumbering or the checked mesh.
+pub fn plain_delaunay(options: &Options) -> bool {
+    !(options.uses_segments()
+        || options.edges
+        || options.neighbors
+        || options.voronoi
+        || options.second_order
+        || options.jettison
+        || options.check)
+}
+
+/// The outputs of a Delaunay triangulation (with [`plain_delaunay`] options and at least one
+/// triangle), built from the mesh it consumes: what [`FinishedMesh::write`] gives for it,
+/// without the per-triangle tags and lists that the general path needs, and in place: the
+/// output triangles are the real triangles' corners compacted in the corner array (the twins
+/// are freed first), and the output points are the mesh's points. This keeps the peak memory of
+/// a large triangulation to the mesh and the output markers.
+///
+/// Every edge of the mesh's hull has one ghost triangle across it, so with `T` real
+/// triangles and `h` ghosts there are `(3T + h) / 2` edges and `h` boundary edges, which
+/// Triangle counts as segments, and the hull vertices are the ghosts' finite corners.
+pub fn delaunay_outputs(
+    options: &Options,
+    input: &Input<'_>,
+    mut mesh: Mesh,
+    mut output: Output,
+) -> (Output, VoronoiOutput) {
+    let n = mesh.points.len();
+    let k = input.point_attribute_count;
+    let write_nodes = !options.no_node_output;
+    let mut markers = (write_nodes && !options.no_boundary_markers).then(|| {
+        input
+            .point_markers
+            .map_or_else(|| vec![0; n], <[i32]>::to_vec)
+    });
+    drop(std::mem::take(&mut mesh.twins));
+    let mut corners = std::mem::take(&mut mesh.corners);
+    let (mut kept, mut ghosts) = (0, 0);
+    let base = options.first_index();
+    for t in 0..corners.len() / 3 {
+        let [a, b, c] = [corners[3 * t], corners[3 * t + 1], corners[3 * t + 2]];
+        if a == GHOST || b == GHOST || c == GHOST {
+            ghosts += 1;
+            if let Some(markers) = markers.as_mut() {
+                // A boundary vertex without an input marker gets 1.
+                for v in [a, b, c] {
+                    if v != GHOST && markers[v as usize] == 0 {
+                        markers[v as usize] = 1;
+                    }
+                }
+            }
+            continue;
+        }
+        // Written at or before the slot being read: the compaction runs forward.
+        corners[kept..kept + 3].copy_from_slice(&[
+            a.wrapping_add_signed(base),
+            b.wrapping_add_signed(base),
+            c.wrapping_add_signed(base),
+        ]);
+        kept += 3;
+    }
+    corners.truncate(kept);
+    let triangle_count = kept / 3;
+    output.point_count = n;
+    output.point_attribute_count = k;
+    if write_nodes {
+        output.points = Some(std::mem::take(&mut mesh.points).into_flattened());
+        if k > 0 {
+            output.point_attributes = Some(input.point_attributes.to_vec());
+        }
+        output.point_markers = markers;
+    }
+    output.triangle_count = triangle_count;
+    output.corners = 3;
+    if !options.no_element_output {
+        // Same size and alignment: collected in place, no copy of the allocation.
+        output.triangles = Some(corners.into_iter().map(|v| v as i32).collect());
+    }
+    output.edge_count = (3 * triangle_count + ghosts) / 2;
+    output.segment_count = ghosts;
+    let voronoi = VoronoiOutput {
+        point_count: triangle_count,
+        point_attribute_count: k,
+        edge_count: output.edge_count,
+        diagram: None,
+    };
+    (output, voronoi)
+}
 
 /// A finished mesh with the per-vertex and per-edge facts the outputs need.
 pub struct FinishedMesh<'a> {

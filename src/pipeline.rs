@@ -7,8 +7,7 @@ use crate::algorithms::domain::{carve, Domain};
 use crate::algorithms::reconstruct::reconstruct;
 use crate::algorithms::refine::{Quality, Refiner, VertexKind};
 use crate::algorithms::voronoi::{voronoi_diagram, DualOf};
-use crate::assemble::FinishedMesh;
-use crate::assemble::Numbering;
+use crate::assemble::{self, FinishedMesh, Numbering};
 use crate::data::{Hooks, Input, Output, Phase, UnsuitableFn, VoronoiOutput};
 use crate::error::Error;
 use crate::geometry::{Exact, Inexact, Point, Predicates};
@@ -268,6 +267,19 @@ fn run<P: Predicates>(
         (mesh, duplicate_of)
     };
     hooks.report(Phase::Delaunay, n as u64, n as u64);
+    // A plain Delaunay triangulation in the caller's units: its outputs are built from the mesh
+    // in place (scaled coordinates go through `write_outputs`, which gives them back unscaled).
+    if !options.refine
+        && scaling.is_identity()
+        && assemble::plain_delaunay(options)
+        && mesh.triangle_count() > 0
+    {
+        let triangles = mesh.triangle_count() as u64;
+        hooks.report(Phase::Output, 0, triangles);
+        let outputs = assemble::delaunay_outputs(options, input, mesh, output);
+        hooks.report(Phase::Output, triangles, triangles);
+        return Ok(outputs);
+    }
     let k = input.point_attribute_count;
     let mut meshed = Meshed {
         point_attributes: input.point_attributes.to_vec(),

@@ -121,21 +121,10 @@ impl Predicates for Exact {
         let detleft = (a[0] - c[0]) * (b[1] - c[1]);
         let detright = (a[1] - c[1]) * (b[0] - c[0]);
         let det = detleft - detright;
-        let detsum = if detleft > 0.0 {
-            if detright <= 0.0 {
-                return det;
-            }
-            detleft + detright
-        } else if detleft < 0.0 {
-            if detright >= 0.0 {
-                return det;
-            }
-            -detleft - detright
-        } else {
-            return det;
-        };
-        let errbound = CCW_ERRBOUND_A * detsum;
-        if det >= errbound || -det >= errbound {
+        // Shewchuk's bound on |detleft| + |detright| without his sign branches: when the two
+        // terms differ in sign (or one is zero), |det| is their whole sum and passes anyway.
+        let errbound = CCW_ERRBOUND_A * (detleft.abs() + detright.abs());
+        if det.abs() >= errbound {
             return det;
         }
         robust::orient2d(coord(a), coord(b), coord(c))

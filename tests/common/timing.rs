@@ -147,7 +147,7 @@ pub fn timed_call(library: Library, switches: &str, input: &MeshInput) -> (Times
 
 /// The triangles of `mesh`, each rotated to start at its smallest corner, sorted: equal for two
 /// outputs exactly when they have the same triangles, whatever their order.
-fn sorted_triangles(mesh: &Triangulation) -> Vec<[i32; 3]> {
+pub fn sorted_triangles(mesh: &Triangulation) -> Vec<[i32; 3]> {
     let mut triangles: Vec<[i32; 3]> = mesh
         .triangle_triples()
         .into_iter()

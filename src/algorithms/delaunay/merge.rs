@@ -16,7 +16,7 @@
 use super::{triangulate_in_order, Triangulation};
 use crate::algorithms::delaunay::order::multiscale_order;
 use crate::geometry::{Point, Predicates};
-use crate::mesh::{Mesh, GHOST, NONE};
+use crate::mesh::{triangle_of, Mesh, GHOST, NONE};
 
 /// Below this many points one thread is faster than two.
 pub const PARALLEL_THRESHOLD: usize = 20_000;
@@ -27,12 +27,14 @@ struct Half {
     duplicate_of: Vec<(u32, u32)>,
 }
 
-fn triangulate_half<P: Predicates>(points: &[Point], ids: &[u32]) -> Option<Half> {
+/// Triangulates the points `ids` in a mesh with room for `capacity` triangle slots.
+fn triangulate_half<P: Predicates>(points: &[Point], ids: &[u32], capacity: usize) -> Option<Half> {
     let local_points: Vec<Point> = ids.iter().map(|&v| points[v as usize]).collect();
     let order = multiscale_order(&local_points);
     let sorted: Vec<Point> = order.iter().map(|&i| local_points[i as usize]).collect();
+    drop(local_points);
     let global = |i: u32| ids[order[i as usize] as usize];
-    let (mut mesh, duplicates) = triangulate_in_order::<P>(sorted);
+    let (mut mesh, duplicates) = triangulate_in_order::<P>(sorted, capacity);
     if mesh.triangle_count() == 0 {
         return None;
     }
@@ -77,15 +79,18 @@ pub fn triangulate_two_halves<P: Predicates>(
             right.push(v);
         }
     }
+    drop(ids);
     if left.len() < 3 || right.len() < 3 {
         return Err(points);
     }
+    // The left mesh gets room for both halves' triangles (2n - 4 slots, and the two ghosts of
+    // the merge): the right half's are appended without reallocating.
     let (l, r) = std::thread::scope(|scope| {
-        let right_job = scope.spawn(|| triangulate_half::<P>(&points, &right));
-        let l = triangulate_half::<P>(&points, &left);
+        let right_job = scope.spawn(|| triangulate_half::<P>(&points, &right, 0));
+        let l = triangulate_half::<P>(&points, &left, 2 * n + 4);
         (l, right_job.join().ok().flatten())
     });
-    let (Some(l), Some(r)) = (l, r) else {
+    let (Some(l), Some(mut r)) = (l, r) else {
         return Err(points);
     };
     let mut duplicate_of = vec![NONE; n];
@@ -95,9 +100,14 @@ pub fn triangulate_two_halves<P: Predicates>(
     // One mesh: the right half's triangles after the left half's.
     let offset = 3 * l.mesh.triangle_count();
     let mut mesh = l.mesh;
-    mesh.corners.extend_from_slice(&r.mesh.corners);
-    mesh.twins.extend(r.mesh.twins.iter().map(|&f| f + offset));
     mesh.points = points;
+    drop(std::mem::take(&mut r.mesh.points));
+    let right_corners = std::mem::take(&mut r.mesh.corners);
+    let right_twins = std::mem::take(&mut r.mesh.twins);
+    mesh.corners.extend_from_slice(&right_corners);
+    drop(right_corners);
+    mesh.twins.extend(right_twins.iter().map(|&f| f + offset));
+    drop(right_twins);
     let mut merger = Merger::<P> {
         mesh,
         _p: Default::default(),
@@ -119,19 +129,30 @@ struct Hull {
 }
 
 impl Hull {
+    /// Walks the ring of ghost triangles of the half in `triangles` (each ghost's neighbour
+    /// across its half-edge from the vertex at infinity is the next ghost around the hull), from
+    /// the first ghost in the range: O(hull) after that search, not a scan of the whole half.
     fn read(mesh: &Mesh, triangles: std::ops::Range<u32>) -> Hull {
         let mut succ = std::collections::HashMap::new();
-        let mut entries: Vec<(u32, u32, u32)> = Vec::new(); // (y, x, ghost): hull edge y→x
-        for t in triangles {
-            if let Some((x, y)) = ghost_edge(mesh, t) {
-                entries.push((y, x, t));
+        let slots = triangles.len();
+        let first = triangles
+            .into_iter()
+            .find(|&t| ghost_edge(mesh, t).is_some())
+            .expect("a triangulated half has a hull");
+        let mut ghost = first;
+        for _ in 0..slots {
+            let c = mesh.triangle(ghost);
+            let k = c.iter().position(|&v| v == GHOST).expect("a ghost");
+            // Hull edge y → x (the ghost's finite half-edge is x → y).
+            let (x, y) = (c[(k + 1) % 3], c[(k + 2) % 3]);
+            let y_entry = succ.entry(y).or_insert((NONE, NONE, NONE, NONE));
+            (y_entry.0, y_entry.2) = (x, ghost);
+            let x_entry = succ.entry(x).or_insert((NONE, NONE, NONE, NONE));
+            (x_entry.1, x_entry.3) = (y, ghost);
+            ghost = triangle_of(mesh.twin(3 * ghost + k as u32));
+            if ghost == first {
+                break;
             }
-        }
-        for &(y, x, t) in &entries {
-            succ.entry(y).or_insert((NONE, NONE, NONE, NONE)).0 = x;
-            succ.entry(y).or_insert((NONE, NONE, NONE, NONE)).2 = t;
-            succ.entry(x).or_insert((NONE, NONE, NONE, NONE)).1 = y;
-            succ.entry(x).or_insert((NONE, NONE, NONE, NONE)).3 = t;
         }
         Hull { succ }
     }

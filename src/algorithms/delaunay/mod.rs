@@ -11,8 +11,11 @@
 //! order ([`order::brio_order`]). Both give the same triangulation for points in general
 //! position.
 
+mod bulk;
 pub mod merge;
 pub mod order;
+
+use bulk::triangulate_in_order;
 
 use crate::geometry::{Point, Predicates};
 use crate::mesh::{triangle_of, Mesh, GHOST, NONE};
@@ -28,6 +31,33 @@ pub enum Location {
     OnVertex(u32),
     /// Outside the hull, strictly beyond the hull edge of ghost triangle `t`.
     Outside(u32),
+}
+
+/// The location of `p` in triangle `t`, where a walk found it on no edge's far side and on the
+/// edges `zeros` (half-edges of `t`, at most two; `ends` gives a half-edge's origin and
+/// destination): inside, on the one edge, or at the vertex the two share.
+#[inline(always)]
+fn location_in_triangle(
+    t: u32,
+    zeros: &[u32],
+    p: Point,
+    ends: impl Fn(u32) -> (u32, u32),
+    point: impl Fn(u32) -> Point,
+) -> Location {
+    match *zeros {
+        [] => Location::InTriangle(t),
+        [e] => Location::OnEdge(e),
+        [e1, e2, ..] => {
+            let ((o1, _), (o2, d2)) = (ends(e1), ends(e2));
+            let v = if o1 == d2 { o1 } else { o2 };
+            if point(v) == p {
+                Location::OnVertex(v)
+            } else {
+                // Inexact arithmetic only: treat as on the first edge.
+                Location::OnEdge(e1)
+            }
+        }
+    }
 }
 
 /// The result of triangulating a point set.
@@ -175,25 +205,14 @@ impl<P: Predicates> Inserter<P> {
                     zero_count += 1;
                 }
             }
-            return match zero_count {
-                0 => Location::InTriangle(t),
-                1 => Location::OnEdge(zeros[0]),
-                _ => {
-                    // On two edges: at their shared vertex.
-                    let (e1, e2) = (zeros[0], zeros[1]);
-                    let v = if self.mesh.origin(e1) == self.mesh.dest(e2) {
-                        self.mesh.origin(e1)
-                    } else {
-                        self.mesh.origin(e2)
-                    };
-                    if self.mesh.point(v) == p {
-                        Location::OnVertex(v)
-                    } else {
-                        // Inexact arithmetic only: treat as on the first edge.
-                        Location::OnEdge(e1)
-                    }
-                }
-            };
+            let m = &self.mesh;
+            return location_in_triangle(
+                t,
+                &zeros[..zero_count],
+                p,
+                |e| (m.origin(e), m.dest(e)),
+                |v| m.point(v),
+            );
         }
     }
 
@@ -307,7 +326,7 @@ impl<P: Predicates> Inserter<P> {
 /// caller's indices at the end.
 pub fn triangulate<P: Predicates>(points: Vec<Point>, order: &[u32]) -> Triangulation {
     let sorted: Vec<Point> = order.iter().map(|&v| points[v as usize]).collect();
-    let (mut mesh, sorted_duplicate_of) = triangulate_in_order::<P>(sorted);
+    let (mut mesh, sorted_duplicate_of) = triangulate_in_order::<P>(sorted, 0);
     for c in mesh.corners.iter_mut() {
         if *c != GHOST {
             *c = order[*c as usize];
@@ -323,42 +342,6 @@ pub fn triangulate<P: Predicates>(points: Vec<Point>, order: &[u32]) -> Triangul
     let mut triangulation = Triangulation { mesh, duplicate_of };
     triangulation.keep_first_copies();
     triangulation
-}
-
-/// Triangulates `points` inserting them in index order; returns the mesh and, per vertex, the
-/// vertex it duplicates (or [`NONE`]).
-fn triangulate_in_order<P: Predicates>(points: Vec<Point>) -> (Mesh, Vec<u32>) {
-    let n = points.len() as u32;
-    let mut duplicate_of = vec![NONE; n as usize];
-    let mut mesh = Mesh::with_points(points);
-    // Seed triangle: the first point, the first point distinct from it, and the first point not
-    // collinear with those two.
-    if n == 0 {
-        return (mesh, duplicate_of);
-    }
-    let pa = mesh.point(0);
-    let Some(b) = (1..n).find(|&v| mesh.point(v) != pa) else {
-        return (mesh, duplicate_of);
-    };
-    let pb = mesh.point(b);
-    let Some(c) = (b + 1..n).find(|&v| P::orient2d(pa, pb, mesh.point(v)) != 0.0) else {
-        return (mesh, duplicate_of);
-    };
-    if P::orient2d(pa, pb, mesh.point(c)) > 0.0 {
-        mesh.init_triangle(0, b, c);
-    } else {
-        mesh.init_triangle(0, c, b);
-    }
-    let mut inserter = Inserter::<P>::new(mesh);
-    for v in 1..n {
-        if v == b || v == c {
-            continue;
-        }
-        if let Err(u) = inserter.insert(v) {
-            duplicate_of[v as usize] = u;
-        }
-    }
-    (inserter.mesh, duplicate_of)
 }
 
 #[cfg(test)]

@@ -83,8 +83,9 @@ const HILBERT_TABLE: [[u16; 256]; 4] = {
     table
 };
 
-/// Hilbert-curve key of every point, over the points' bounding box.
-fn hilbert_keys(points: &[Point]) -> Vec<u32> {
+/// Every point's Hilbert-curve key (over the points' bounding box) in the high half of a word
+/// whose low half is the point's index.
+fn hilbert_keyed_indices(points: &[Point]) -> Vec<u64> {
     let (mut xmin, mut ymin, mut xmax, mut ymax) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
     for p in points {
         xmin = xmin.min(p[0]);
@@ -105,23 +106,26 @@ fn hilbert_keys(points: &[Point]) -> Vec<u32> {
     };
     points
         .iter()
-        .map(|p| {
+        .enumerate()
+        .map(|(i, p)| {
             let x = ((p[0] - xmin) * scale_x) as u32;
             let y = ((p[1] - ymin) * scale_y) as u32;
-            hilbert_index(x.min(cells as u32), y.min(cells as u32))
+            let key = hilbert_index(x.min(cells as u32), y.min(cells as u32));
+            (u64::from(key) << 32) | i as u64
         })
         .collect()
+}
+
+/// The points' indices with their Hilbert keys, sorted by key (among points with equal keys the
+/// earlier input point first): the index is each word's low half.
+fn hilbert_sorted_keys(points: &[Point]) -> Vec<u64> {
+    radix_sort_by_high_half(hilbert_keyed_indices(points))
 }
 
 /// All point indices in Hilbert-curve order (among points with equal keys the earlier input
 /// point first).
 pub fn hilbert_order(points: &[Point]) -> Vec<u32> {
-    let keyed: Vec<u64> = hilbert_keys(points)
-        .into_iter()
-        .enumerate()
-        .map(|(i, k)| (u64::from(k) << 32) | i as u64)
-        .collect();
-    radix_sort_by_high_half(keyed)
+    hilbert_sorted_keys(points)
         .into_iter()
         .map(|k| k as u32)
         .collect()
@@ -199,7 +203,8 @@ fn rounds_in_hilbert_order(points: &[Point], seed: u64, growth_bits: u32) -> Vec
         starts[r] += starts[r - 1];
     }
     let mut order = vec![0u32; points.len()];
-    for v in hilbert_order(points) {
+    for key in hilbert_sorted_keys(points) {
+        let v = key as u32;
         let r = round_of[v as usize] as usize;
         order[starts[r]] = v;
         starts[r] += 1;
