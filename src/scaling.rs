@@ -62,20 +62,41 @@ fn lowest_bit(x: f64) -> i32 {
     }
 }
 
-/// `2^e` for `e` in the normal range.
+/// `2^e` for `e` from -1074 (the smallest subnormal) to 1023.
 fn power_of_two(e: i32) -> f64 {
-    debug_assert!((-1022..=1023).contains(&e));
-    f64::from_bits(((e + 1023) as u64) << 52)
+    debug_assert!((-1074..=1023).contains(&e));
+    if e >= -1022 {
+        f64::from_bits(((e + 1023) as u64) << 52)
+    } else {
+        f64::from_bits(1u64 << (e + 1074))
+    }
 }
 
-/// `x · 2^k`, in two exact steps (a single power may not be representable); only the last step
-/// can round, when the result is subnormal.
+/// `x · 2^k` for any `k` (area scaling doubles the exponent, beyond one power's range), rounded
+/// once: `x` is first brought to [1, 2) exactly, then moved to its place by one multiplication
+/// (two, both exact, while the result is normal; the last one rounds when it is subnormal).
 fn times_power_of_two(x: f64, k: i32) -> f64 {
-    if k == 0 {
+    if k == 0 || x == 0.0 || !x.is_finite() {
         return x;
     }
-    let half = k / 2;
-    x * power_of_two(half) * power_of_two(k - half)
+    let e = exponent(x);
+    // Exact: the result lies in [1, 2).
+    let unit = if e >= -1023 {
+        x * power_of_two(-e)
+    } else {
+        x * power_of_two(1023) * power_of_two(-e - 1023)
+    };
+    let target = e + k;
+    if target > 1023 {
+        return unit * f64::INFINITY;
+    }
+    if target >= -1022 {
+        return unit * power_of_two(target);
+    }
+    if target + 1022 < -1074 {
+        return 0.0f64.copysign(x);
+    }
+    unit * power_of_two(-1022) * power_of_two(target + 1022)
 }
 
 /// Scaled coordinate = caller's coordinate · `2^exponent`.
@@ -183,6 +204,25 @@ impl Scaling {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn scaling_by_any_power_of_two_rounds_once() {
+        let tiniest = f64::from_bits(1);
+        assert_eq!(times_power_of_two(1.0, -1074), tiniest);
+        assert_eq!(times_power_of_two(1.0, -1075), 0.0);
+        assert_eq!(times_power_of_two(1.5, -1075), tiniest);
+        assert_eq!(times_power_of_two(tiniest, 2100), f64::INFINITY);
+        assert_eq!(times_power_of_two(tiniest, 2000), power_of_two(926));
+        assert_eq!(
+            times_power_of_two(f64::MAX, -2000),
+            f64::MAX * power_of_two(-1000) * power_of_two(-1000)
+        );
+        assert_eq!(times_power_of_two(-3.0, -2148), -0.0);
+        assert_eq!(times_power_of_two(0.75, 10), 768.0);
+        // Subnormal results: one rounding, to even (3 · 2^-1076 is 0.75 ulp: rounds to 1 ulp).
+        assert_eq!(times_power_of_two(3.0, -1076), tiniest);
+        assert_eq!(times_power_of_two(7.0, -1076), 2.0 * tiniest);
+    }
 
     #[test]
     fn exponents_and_lowest_bits() {
