@@ -48,6 +48,10 @@ use common::{ours, reference};
 /// Our triangle count must lie within this fraction of Triangle's.
 const COUNT_TOLERANCE: f64 = 0.10;
 
+/// The divergent cases (small meshes where the order of splits decides a few dozen vertices):
+/// within this fraction of Triangle's count (issue 11's band is up to twice Triangle's).
+const WIDE_COUNT_TOLERANCE: f64 = 0.50;
+
 /// Tolerance on the comparison of the smallest angles, in degrees.
 const ANGLE_SLACK: f64 = 1e-9;
 
@@ -295,7 +299,7 @@ fn previous_mesh(pslg: &Pslg, by_triangle: bool, triangle: &Reference) -> Pslg {
 /// Ours and Triangle's on `input` meshed by `run`: both checked by [`check_output`] (a failure
 /// panics); `Ok` or `Err` (ours differs from Triangle's by more than the differential bounds)
 /// with the numbers. `None` without the reference library.
-fn differential(input: Input, run: Run) -> Option<Result<String, String>> {
+fn differential(input: Input, run: Run, count_tolerance: f64) -> Option<Result<String, String>> {
     let triangle = reference()?;
     let (pslg, switches) = match run {
         Run::Switches(switches) => (input.pslg(), switches),
@@ -325,7 +329,7 @@ fn differential(input: Input, run: Run) -> Option<Result<String, String>> {
         "{context}: {} triangles (Triangle {}, ratio {ratio:.3}), smallest angle {:.4}° (Triangle {:.4}°)",
         o.triangles, t.triangles, o.smallest_angle, t.smallest_angle
     );
-    let count_ok = o.triangles as f64 <= (1.0 + COUNT_TOLERANCE) * t.triangles as f64;
+    let count_ok = o.triangles as f64 <= (1.0 + count_tolerance) * t.triangles as f64;
     let angle_ok = min_angle(switches)
         .is_none_or(|theta| o.smallest_angle >= theta.min(t.smallest_angle) - ANGLE_SLACK);
     Some(if count_ok && angle_ok {
@@ -348,7 +352,7 @@ fn all_match(cases: Vec<(Input, Run)>) {
     );
     let mut failures = Vec::new();
     for &(input, run) in &cases {
-        match differential(input, run) {
+        match differential(input, run, COUNT_TOLERANCE) {
             None => return,
             Some(Ok(_)) => {}
             Some(Err(numbers)) => failures.push(numbers),
@@ -364,12 +368,12 @@ fn all_match(cases: Vec<(Input, Run)>) {
     );
 }
 
-/// One case that must match (for the `#[ignore]`d tests of the divergent cases).
-fn assert_matches(input: Input, run: Run) {
-    if let Some(Err(numbers)) = differential(input, run) {
+/// One divergent case: every check of [`all_match`], with the count within the wide band.
+fn assert_within_wide_band(input: Input, run: Run) {
+    if let Some(Err(numbers)) = differential(input, run, WIDE_COUNT_TOLERANCE) {
         panic!(
             "ours has over {}% more triangles than Triangle or a worse smallest angle: {numbers}",
-            COUNT_TOLERANCE * 100.0
+            WIDE_COUNT_TOLERANCE * 100.0
         );
     }
 }
@@ -426,7 +430,7 @@ fn report() {
             ""
         };
         let case = format!("Input::{input:?}, Run::{run:?}");
-        match std::panic::catch_unwind(|| differential(input, run)) {
+        match std::panic::catch_unwind(|| differential(input, run, COUNT_TOLERANCE)) {
             Ok(None) => return,
             Ok(Some(Ok(numbers))) => println!("{known}ok   | {case} | {numbers}"),
             Ok(Some(Err(numbers))) => println!("{known}DIFF | {case} | {numbers}"),
@@ -441,19 +445,19 @@ fn report() {
     }
 }
 
-/// The divergent cases: each becomes an `#[ignore]`d test of its own (named after input and
-/// switches) that asserts what [`all_match`] asserts, and the tests above leave it out
-/// ([`DIVERGENT`]). The comment of each gives the numbers (from the `report` test).
+/// The divergent cases: each becomes a test of its own (named after input and switches) that
+/// asserts what [`all_match`] asserts with the count in the wide band ([`WIDE_COUNT_TOLERANCE`]),
+/// and the tests above leave it out ([`DIVERGENT`]). The comment of each gives the numbers (from the `report` test).
 macro_rules! divergent {
     ($($(#[doc = $doc:literal])* $name:ident: ($input:expr, $run:expr), $reason:literal;)*) => {
         /// The cases where ours differs from Triangle beyond the bounds, or fails a check.
         const DIVERGENT: &[(Input, Run)] = &[$(($input, $run)),*];
         $(
             $(#[doc = $doc])*
+            #[doc = concat!("(Over the 10% band: ", $reason, ".)")]
             #[test]
-            #[ignore = $reason]
             fn $name() {
-                assert_matches($input, $run);
+                assert_within_wide_band($input, $run);
             }
         )*
     };
