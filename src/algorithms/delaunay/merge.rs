@@ -88,7 +88,12 @@ pub fn triangulate_two_halves<P: Predicates>(
     let (l, r) = std::thread::scope(|scope| {
         let right_job = scope.spawn(|| triangulate_half::<P>(&points, &right, 0));
         let l = triangulate_half::<P>(&points, &left, 2 * n + 4);
-        (l, right_job.join().ok().flatten())
+        // A panic in the right half's thread (a bug) is not hidden behind a sequential retry:
+        // it goes on to `pipeline::triangulate`, which reports it as `Error::Internal`.
+        let r = right_job
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        (l, r)
     });
     let (Some(l), Some(mut r)) = (l, r) else {
         return Err(points);
