@@ -226,18 +226,12 @@ pub unsafe extern "C" fn triangulate_reentrant(
     user_data: *mut c_void,
     cancel: *const c_int,
 ) -> c_int {
-    let data = UserData(user_data);
-    let test = move |ox, oy, dx, dy, ax, ay, area| {
-        let data = data;
-        unsuitable.is_some_and(|f| f(ox, oy, dx, dy, ax, ay, area, data.0) != 0)
-    };
-    let callback_ref: Option<&UnsuitableFn<'_>> = if unsuitable.is_some() {
-        Some(&test)
-    } else {
-        None
-    };
-    // SAFETY: the caller's contract is this function's.
-    guarded(|| unsafe { run(switches, r#in, out, vorout, callback_ref, cancel, None) })
+    // SAFETY: the same contract, without a progress callback.
+    unsafe {
+        triangulate_progress(
+            switches, r#in, out, vorout, unsuitable, user_data, cancel, None,
+        )
+    }
 }
 
 /// The progress callback of [`triangulate_progress`]: the phase (0 Delaunay triangulation,
