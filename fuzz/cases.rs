@@ -14,6 +14,7 @@
 //!
 //! The including crate must also include `tests/common` as `mod common` at its root.
 
+use super::common::checks::convex_hull;
 use super::common::pslg_checks::{segment_chains, MeshView};
 use super::common::{ours_with, MeshInput, Triangulation};
 
@@ -131,7 +132,15 @@ pub fn decode(data: &[u8], extreme: bool) -> Case {
         .collect();
     let markers =
         (bytes.below(2) == 1).then(|| (0..n).map(|_| bytes.below(5) as i32 - 1).collect());
-    let index = |bytes: &mut Bytes<'_>| bytes.below(n + 2) as i32 - 1 + base;
+    // Mostly in range (so that most cases get meshed); one in 64 is -1 or n (an error).
+    let index = |bytes: &mut Bytes<'_>| {
+        let b = bytes.byte() as usize;
+        if b % 64 == 0 {
+            [-1, n as i32][b / 64 % 2] + base
+        } else {
+            (b / 2 % n.max(1)) as i32 + base
+        }
+    };
     let segments: Vec<[i32; 2]> = (0..bytes.below(if n > 16 { 40 } else { 12 }))
         .map(|_| [index(&mut bytes), index(&mut bytes)])
         .collect();
@@ -219,6 +228,32 @@ pub fn check(
                 if !in_range(e[0]) || !in_range(e[1]) || e[0] == -1 {
                     return Err(format!("Voronoi edge {i} {e:?} is out of range"));
                 }
+            }
+        }
+    }
+    // With `c` and nothing eaten (no holes), the mesh covers the convex hull of the vertices
+    // exactly once: its area is the hull's (a fold or overlap would add area). Checked in floating
+    // point, so only where the hull is not a sliver (where rounding could decide).
+    if o.convex_hull && case.input.holes.is_empty() && !o.refine && !extreme {
+        let finite: Vec<[f64; 2]> = case.input.points.clone();
+        let hull = convex_hull(&finite);
+        if hull.len() >= 3 {
+            let o0 = hull[0];
+            let hull_area: f64 = (1..hull.len() - 1)
+                .map(|i| {
+                    let (b, c) = (hull[i], hull[i + 1]);
+                    0.5 * ((b[0] - o0[0]) * (c[1] - o0[1]) - (b[1] - o0[1]) * (c[0] - o0[0]))
+                })
+                .sum();
+            let extent2 = hull
+                .iter()
+                .map(|p| (p[0] - o0[0]).powi(2) + (p[1] - o0[1]).powi(2))
+                .fold(0.0, f64::max);
+            let area = mesh.area();
+            if hull_area > 1e-6 * extent2 && (area - hull_area).abs() > 1e-9 * hull_area {
+                return Err(format!(
+                    "the mesh's area {area:e} is not the convex hull's {hull_area:e}"
+                ));
             }
         }
     }
