@@ -50,19 +50,79 @@ pub fn push_g17(out: &mut Vec<u8>, value: f64) {
         push_unsigned(out, value.abs() as u64);
         return;
     }
-    // Rust's fixed-precision scientific formatting is correctly rounded (ties to even on the
-    // exact binary value), as glibc's printf is; `%g` takes its exponent after this rounding.
+    let (mut digits, exponent) = match seventeen_digits(value.abs()) {
+        Some(found) => found,
+        None => seventeen_digits_by_fmt(value.abs()),
+    };
+    // Trailing zeros are never printed by %g (without the `#` flag).
+    let mut significant = digits.len();
+    while significant > 1 && digits[significant - 1] == b'0' {
+        significant -= 1;
+    }
+    let digits = &mut digits[..significant];
+    push_g_layout(out, digits, exponent);
+}
+
+/// The 17 significant digits of `x` (positive, finite), correctly rounded with ties to even on
+/// the exact binary value, and the decimal exponent after rounding, in integer arithmetic: `x` =
+/// m · 2^q is scaled by 10^(16 − E) exactly in 128 bits and shifted back with the remainder
+/// deciding the rounding. `None` outside the range where that fits (decimal exponents from −6 to
+/// 16 and q ≤ 0: every coordinate of ordinary magnitude); the caller then uses `fmt`.
+fn seventeen_digits(x: f64) -> Option<([u8; 17], i32)> {
+    const TEN16: u128 = 10_000_000_000_000_000;
+    let bits = x.to_bits();
+    let biased = ((bits >> 52) & 0x7ff) as i32;
+    if biased == 0 {
+        return None; // subnormal: far outside the range
+    }
+    let m = u128::from((bits & ((1 << 52) - 1)) | (1 << 52));
+    let q = biased - 1075;
+    if q > 0 {
+        return None;
+    }
+    let shift = (-q) as u32;
+    // A first guess of E = floor(log10 x), corrected below against the exact value.
+    let mut e = x.log10().floor() as i32;
+    for _ in 0..3 {
+        if !(-6..=16).contains(&e) || shift >= 128 {
+            return None;
+        }
+        let scaled = m * 10u128.pow((16 - e) as u32); // < 2^53 · 10^22 < 2^127
+        let whole = scaled >> shift;
+        if whole < TEN16 {
+            e -= 1;
+            continue;
+        }
+        if whole >= 10 * TEN16 {
+            e += 1;
+            continue;
+        }
+        let remainder = scaled - (whole << shift);
+        let half = if shift == 0 { 0 } else { 1u128 << (shift - 1) };
+        let round_up = shift > 0 && (remainder > half || (remainder == half && whole % 2 == 1));
+        let mut rounded = whole + u128::from(round_up);
+        if rounded == 10 * TEN16 {
+            rounded = TEN16;
+            e += 1;
+        }
+        let (text, start) = unsigned_digits(rounded as u64);
+        let mut digits = [0u8; 17];
+        digits.copy_from_slice(&text[start..]);
+        return Some((digits, e));
+    }
+    None
+}
+
+/// As [`seventeen_digits`], for every positive finite `x`, by Rust's fixed-precision scientific
+/// formatting: correctly rounded (ties to even on the exact binary value), as glibc's printf is;
+/// `%g` takes its exponent after this rounding.
+fn seventeen_digits_by_fmt(x: f64) -> ([u8; 17], i32) {
     let mut text = StackText {
         bytes: [0; 40],
         len: 0,
     };
-    write!(
-        text,
-        "{:.*e}",
-        (SIGNIFICANT_DIGITS - 1) as usize,
-        value.abs()
-    )
-    .expect("an f64 in scientific form fits in 40 bytes");
+    write!(text, "{:.*e}", (SIGNIFICANT_DIGITS - 1) as usize, x)
+        .expect("an f64 in scientific form fits in 40 bytes");
     let text = &text.bytes[..text.len];
     let e_at = text
         .iter()
@@ -82,13 +142,12 @@ pub fn push_g17(out: &mut Vec<u8>, value: f64) {
         }
     }
     debug_assert_eq!(count, SIGNIFICANT_DIGITS as usize);
-    // Trailing zeros are never printed by %g (without the `#` flag).
-    let mut significant = digits.len();
-    while significant > 1 && digits[significant - 1] == b'0' {
-        significant -= 1;
-    }
-    let digits = &digits[..significant];
+    (digits, exponent)
+}
 
+/// `%g`'s layout of the significant `digits` (trailing zeros removed) with decimal `exponent`:
+/// exponent form below -4 or from 17 on, fixed form otherwise.
+fn push_g_layout(out: &mut Vec<u8>, digits: &[u8], exponent: i32) {
     if !(-4..SIGNIFICANT_DIGITS).contains(&exponent) {
         out.push(digits[0]);
         if digits.len() > 1 {
@@ -283,6 +342,36 @@ mod tests {
             let everyday = ((state >> 11) % 2_000_000) as f64 / 1024.0 - 900.0;
             assert_eq!(g17(everyday), c_g17(everyday));
         }
+    }
+
+    /// The integer fast path against glibc where it applies (decimal exponents −6 to 16): random
+    /// mantissas at every binary exponent of that range, short decimals, and exact ties at the
+    /// 17th digit (n + 1/4 and n + 3/4 with 16-digit n, where the 18th digit is a 5).
+    #[test]
+    fn the_integer_path_agrees_with_glibc() {
+        let mut state: u64 = 0x9e37_79b9_7f4a_7c15;
+        let mut next = || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            state
+        };
+        let mut fast = 0;
+        for _ in 0..100_000 {
+            let exponent = (next() % 80) as i64 - 22; // 2^-22 (≈ 2e-7) to 2^57 (≈ 1.4e17)
+            let bits = ((exponent + 1023) as u64) << 52 | (next() >> 12);
+            let value = f64::from_bits(bits);
+            fast += usize::from(seventeen_digits(value).is_some());
+            assert_eq!(g17(value), c_g17(value), "value bits {bits:#x}");
+            let decimal =
+                (next() % 10_000_000) as f64 / [1.0, 10.0, 1e3, 1e6, 1e9][(next() % 5) as usize];
+            assert_eq!(g17(decimal), c_g17(decimal), "{decimal:e}");
+            let n = (1u64 << 50) + next() % (1 << 50);
+            for tie in [n as f64 + 0.25, n as f64 + 0.75, n as f64 + 0.5] {
+                assert_eq!(g17(tie), c_g17(tie), "{tie:e}");
+            }
+        }
+        assert!(fast > 80_000, "the integer path took only {fast} values");
     }
 
     #[test]
