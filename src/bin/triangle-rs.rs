@@ -7,14 +7,14 @@
 //! leaves a partial result behind.
 
 use std::fs::{self, File};
-use std::io::{self, BufWriter};
+use std::io::BufWriter;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use triangle_rs::data::{Hooks, Input, Output, Phase, Progress, ProgressFn, VoronoiOutput};
 use triangle_rs::io::files::{
-    self, check_vertex_indices, next_iteration_name, split_input_name, AreaFile, EleData, EleFile,
-    FileError, NodeData, NodeFile, PolyData, PolyFile, PolyVertices,
+    next_iteration_name, plan_outputs, read_inputs, repeated_path, split_input_name, FileError,
+    InputFiles, PlannedFile,
 };
 use triangle_rs::io::svg::{write_svg, SvgScene, SvgVoronoi};
 use triangle_rs::options::{Options, SwitchSource};
@@ -237,83 +237,19 @@ fn parse_arguments(args: &[String]) -> Result<Arguments, Failure> {
 }
 
 /// Reads a whole file as text (invalid UTF-8 in comments is tolerated).
-fn read_text(path: &str, quiet: bool) -> Result<String, Failure> {
+fn read_text(path: &str, quiet: bool) -> Result<String, FileError> {
     if !quiet {
         println!("Opening {path}.");
     }
-    let bytes = fs::read(path).map_err(|e| fail(format!("cannot read {path}: {e}")))?;
+    let bytes = fs::read(path).map_err(|e| FileError {
+        file: path.into(),
+        line: None,
+        message: format!("cannot read it: {e}"),
+    })?;
     Ok(match String::from_utf8(bytes) {
         Ok(text) => text,
         Err(e) => String::from_utf8_lossy(e.as_bytes()).into_owned(),
     })
-}
-
-/// The input files of one run, owned; the engine borrows them.
-struct InputFiles {
-    vertices: NodeFile,
-    /// The file the vertices came from.
-    vertex_file: String,
-    poly: Option<(PolyFile, String)>,
-    ele: Option<(EleFile, String)>,
-    area: Option<AreaFile>,
-}
-
-fn read_inputs(base: &str, options: &Options) -> Result<InputFiles, Failure> {
-    let quiet = options.quiet;
-    let mut poly = None;
-    if options.pslg {
-        let name = format!("{base}.poly");
-        // Triangle reads the region section only for A or a-without-number, and not with r.
-        let read_regions = (options.region_attributes || options.variable_area) && !options.refine;
-        poly = Some((
-            files::read_poly(&read_text(&name, quiet)?, &name, read_regions)?,
-            name,
-        ));
-    }
-    let (vertices, vertex_file) = match poly.as_mut() {
-        Some((p, name)) if p.vertices.point_count() > 0 => {
-            (std::mem::take(&mut p.vertices), name.clone())
-        }
-        _ => {
-            let name = format!("{base}.node");
-            (files::read_node(&read_text(&name, quiet)?, &name)?, name)
-        }
-    };
-    let mut ele = None;
-    let mut area = None;
-    if options.refine {
-        let name = format!("{base}.ele");
-        let e = files::read_ele(&read_text(&name, quiet)?, &name)?;
-        if options.variable_area {
-            let area_name = format!("{base}.area");
-            let a = files::read_area(&read_text(&area_name, quiet)?, &area_name)?;
-            if a.areas.len() != e.triangle_count() {
-                return Err(fail(format!(
-                    "{name} and {area_name} disagree on the number of triangles ({} and {})",
-                    e.triangle_count(),
-                    a.areas.len()
-                )));
-            }
-            area = Some(a);
-        }
-        ele = Some((e, name));
-    }
-    Ok(InputFiles {
-        vertices,
-        vertex_file,
-        poly,
-        ele,
-        area,
-    })
-}
-
-/// Writes one file's contents.
-type FileWriter<'a> = Box<dyn Fn(&mut BufWriter<File>) -> io::Result<()> + 'a>;
-
-/// One output file: where it goes and how to write it.
-struct PlannedFile<'a> {
-    path: String,
-    write: FileWriter<'a>,
 }
 
 /// Writes every planned file under a temporary name, then renames them all; on any error the
@@ -349,14 +285,6 @@ fn write_all(planned: &[PlannedFile<'_>], quiet: bool) -> Result<(), Failure> {
         }
     }
     Ok(())
-}
-
-fn required<'a, T>(array: &'a Option<Vec<T>>, what: &str) -> Result<&'a [T], Failure> {
-    array.as_deref().ok_or_else(|| {
-        fail(format!(
-            "internal error: the engine returned no {what}; please report this bug"
-        ))
-    })
 }
 
 fn main() -> ExitCode {
@@ -402,70 +330,11 @@ fn run(args: &[String]) -> Result<(), Failure> {
     }
     let quiet = options.quiet;
     let base = input_name.base;
-    let inputs = read_inputs(&base, &options)?;
-
+    let inputs = read_inputs(&base, &options, |name| read_text(name, quiet))?;
     // Numbering: the first vertex's number (0 or 1) decides for every file; otherwise -z does.
-    let first_index = match inputs.vertices.first_number {
-        Some(0) => 0,
-        Some(1) => 1,
-        _ => options.first_index(),
-    };
+    let first_index = inputs.first_index(&options);
     options.zero_based = first_index == 0;
-    let vertex_count = inputs.vertices.point_count();
-    if vertex_count < 3 {
-        return Err(fail(format!(
-            "{}: the input must have at least three vertices",
-            inputs.vertex_file
-        )));
-    }
-    if let Some((poly, name)) = &inputs.poly {
-        check_vertex_indices(
-            name,
-            "segment",
-            &poly.segments,
-            2,
-            &poly.segment_lines,
-            first_index,
-            vertex_count,
-        )?;
-    }
-    if let Some((ele, name)) = &inputs.ele {
-        check_vertex_indices(
-            name,
-            "triangle",
-            &ele.triangles,
-            ele.corners,
-            &ele.lines,
-            first_index,
-            vertex_count,
-        )?;
-    }
-
-    let vertices = &inputs.vertices;
-    let poly = inputs.poly.as_ref().map(|(p, _)| p);
-    let mut input = Input {
-        points: &vertices.points,
-        point_attributes: &vertices.attributes,
-        point_attribute_count: vertices.attribute_count,
-        point_markers: vertices.markers.as_deref(),
-        ..Input::default()
-    };
-    if let Some((ele, _)) = &inputs.ele {
-        input.triangles = &ele.triangles;
-        input.corners = ele.corners;
-        input.triangle_attributes = &ele.attributes;
-        input.triangle_attribute_count = ele.attribute_count;
-        input.triangle_areas = inputs.area.as_ref().map(|a| a.areas.as_slice());
-    }
-    if let Some(poly) = poly {
-        input.segments = &poly.segments;
-        input.segment_markers = poly.segment_markers.as_deref();
-        // As in the library, refinement does not carve holes or spread regions.
-        if !options.refine {
-            input.holes = &poly.holes;
-            input.regions = &poly.regions;
-        }
-    }
+    let input = inputs.input(&options, first_index)?;
 
     // The engine computes everything; the switches that only suppress output files are applied
     // when writing, so statistics and the picture always see the whole mesh.
@@ -509,15 +378,30 @@ fn run(args: &[String]) -> Result<(), Failure> {
     } else {
         next_iteration_name(&base)
     };
-    let planned = plan_outputs(
+    let mut planned = plan_outputs(
         &options,
-        &arguments,
         &output_base,
         first_index,
+        &arguments.command_line,
         &inputs,
         &mesh,
         &voronoi,
     )?;
+    if let Some(svg) = &arguments.svg {
+        planned.push(svg_file(
+            svg,
+            &options,
+            &arguments,
+            first_index,
+            &inputs,
+            &mesh,
+            &voronoi,
+        ));
+    }
+    // Never write one file over another of this run (or over an input through -I).
+    if let Some(path) = repeated_path(&planned) {
+        return Err(fail(format!("{path} would be written twice")));
+    }
     write_all(&planned, quiet)?;
     if !quiet {
         print_statistics(&options, &input, &mesh);
@@ -525,177 +409,43 @@ fn run(args: &[String]) -> Result<(), Failure> {
     Ok(())
 }
 
-/// Decides which files to write (Triangle's rules) and how.
-fn plan_outputs<'a>(
+/// The picture asked for with `--svg`.
+fn svg_file<'a>(
+    svg: &Path,
     options: &'a Options,
     arguments: &'a Arguments,
-    output_base: &str,
     first_index: i32,
     inputs: &'a InputFiles,
     mesh: &'a Output,
     voronoi: &'a VoronoiOutput,
-) -> Result<Vec<PlannedFile<'a>>, Failure> {
-    let generated_by = Some(arguments.command_line.as_str());
-    let markers = !options.no_boundary_markers;
-    let poly = inputs.poly.as_ref().map(|(p, _)| p);
-    let vertices_from_node_file = inputs.vertex_file.ends_with(".node");
-    let mut planned: Vec<PlannedFile<'a>> = Vec::new();
-    let path = |extension: &str| format!("{output_base}.{extension}");
-
-    let points = required(&mesh.points, "vertex list")?;
-    let node = NodeData {
-        points,
-        attribute_count: mesh.point_attribute_count,
-        attributes: mesh.point_attributes.as_deref().unwrap_or(&[]),
-        markers: if markers {
-            Some(required(&mesh.point_markers, "vertex marker list")?)
-        } else {
-            None
-        },
-    };
-    let triangles = required(&mesh.triangles, "triangle list")?;
-    let ele = EleData {
+) -> PlannedFile<'a> {
+    let (holes, regions) = inputs.holes_and_regions();
+    let scene = SvgScene {
+        title: &arguments.command_line,
+        first_index,
+        points: mesh.points.as_deref().unwrap_or(&[]),
+        triangles: mesh.triangles.as_deref().unwrap_or(&[]),
         corners: mesh.corners,
-        triangles,
-        attribute_count: mesh.triangle_attribute_count,
-        attributes: mesh.triangle_attributes.as_deref().unwrap_or(&[]),
-    };
-
-    // -I writes no .node over the input .node (a .poly's own vertices are still written).
-    let node_would_overwrite_input = options.no_iteration_numbers && vertices_from_node_file;
-    if !options.no_node_output && !node_would_overwrite_input {
-        planned.push(PlannedFile {
-            path: path("node"),
-            write: Box::new(move |w| files::write_node(w, &node, first_index, generated_by)),
-        });
-    }
-    if !options.no_element_output {
-        planned.push(PlannedFile {
-            path: path("ele"),
-            write: Box::new(move |w| files::write_ele(w, &ele, first_index, generated_by)),
-        });
-    }
-    if (options.pslg || options.convex_hull)
-        && !options.no_poly_output
-        && !options.no_iteration_numbers
-    {
-        let data = PolyData {
-            vertices: PolyVertices::InNodeFile {
-                attribute_count: mesh.point_attribute_count,
-                markers,
-            },
-            segments: required(&mesh.segments, "segment list")?,
-            segment_markers: if markers {
-                Some(required(&mesh.segment_markers, "segment marker list")?)
-            } else {
-                None
-            },
-            holes: poly.map_or(&[][..], |p| &p.holes),
-            regions: poly.map_or(&[][..], |p| &p.regions),
-        };
-        planned.push(PlannedFile {
-            path: path("poly"),
-            write: Box::new(move |w| files::write_poly(w, &data, first_index, generated_by)),
-        });
-    }
-    if options.edges {
-        let edges = required(&mesh.edges, "edge list")?;
-        let edge_markers = if markers {
-            Some(required(&mesh.edge_markers, "edge marker list")?)
-        } else {
-            None
-        };
-        planned.push(PlannedFile {
-            path: path("edge"),
-            write: Box::new(move |w| {
-                files::write_edge(w, edges, edge_markers, first_index, generated_by)
-            }),
-        });
-    }
-    if options.voronoi {
-        let diagram = voronoi
+        triangle_attributes: mesh.triangle_attributes.as_deref().unwrap_or(&[]),
+        triangle_attribute_count: mesh.triangle_attribute_count,
+        segments: mesh.segments.as_deref().unwrap_or(&[]),
+        segment_markers: mesh.segment_markers.as_deref(),
+        holes,
+        regions,
+        voronoi: voronoi
             .diagram
             .as_ref()
-            .ok_or_else(|| fail("internal error: the engine returned no Voronoi diagram"))?;
-        let voronoi_nodes = NodeData {
-            points: &diagram.points,
-            attribute_count: voronoi.point_attribute_count,
-            attributes: &diagram.point_attributes,
-            markers: None,
-        };
-        planned.push(PlannedFile {
-            path: path("v.node"),
-            write: Box::new(move |w| {
-                files::write_node(w, &voronoi_nodes, first_index, generated_by)
+            .filter(|_| options.voronoi)
+            .map(|d| SvgVoronoi {
+                points: &d.points,
+                edges: &d.edges,
+                norms: &d.norms,
             }),
-        });
-        planned.push(PlannedFile {
-            path: path("v.edge"),
-            write: Box::new(move |w| {
-                files::write_voronoi_edge(
-                    w,
-                    &diagram.edges,
-                    &diagram.norms,
-                    first_index,
-                    generated_by,
-                )
-            }),
-        });
+    };
+    PlannedFile {
+        path: svg.to_string_lossy().into_owned(),
+        write: Box::new(move |mut w| write_svg(&mut w, &scene)),
     }
-    if options.neighbors {
-        let neighbors = required(&mesh.neighbors, "neighbour list")?;
-        planned.push(PlannedFile {
-            path: path("neigh"),
-            write: Box::new(move |w| files::write_neigh(w, neighbors, first_index, generated_by)),
-        });
-    }
-    if options.geomview {
-        let edge_count = mesh.edge_count;
-        planned.push(PlannedFile {
-            path: path("off"),
-            write: Box::new(move |w| {
-                files::write_off(w, points, &ele, edge_count, first_index, generated_by)
-            }),
-        });
-    }
-    if let Some(svg) = &arguments.svg {
-        let scene = SvgScene {
-            title: &arguments.command_line,
-            first_index,
-            points,
-            triangles,
-            corners: mesh.corners,
-            triangle_attributes: ele.attributes,
-            triangle_attribute_count: ele.attribute_count,
-            segments: mesh.segments.as_deref().unwrap_or(&[]),
-            segment_markers: mesh.segment_markers.as_deref(),
-            holes: poly.map_or(&[][..], |p| &p.holes),
-            regions: poly.map_or(&[][..], |p| &p.regions),
-            voronoi: voronoi
-                .diagram
-                .as_ref()
-                .filter(|_| options.voronoi)
-                .map(|d| SvgVoronoi {
-                    points: &d.points,
-                    edges: &d.edges,
-                    norms: &d.norms,
-                }),
-        };
-        planned.push(PlannedFile {
-            path: svg.to_string_lossy().into_owned(),
-            write: Box::new(move |w| write_svg(w, &scene)),
-        });
-    }
-    // Never write one file over another of this run (or over an input through -I).
-    for (i, file) in planned.iter().enumerate() {
-        if planned[..i]
-            .iter()
-            .any(|other| Path::new(&other.path) == Path::new(&file.path))
-        {
-            return Err(fail(format!("{} would be written twice", file.path)));
-        }
-    }
-    Ok(planned)
 }
 
 // ------------------------------------------------------------------------------------------------

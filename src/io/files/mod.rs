@@ -1,5 +1,6 @@
 //! Triangle's file formats: readers and writers of `.node`, `.ele`, `.poly`, `.area`, `.edge`,
-//! `.neigh`, `.v.node`, `.v.edge` and `.off`, and the file-name rules of its command line.
+//! `.neigh`, `.v.node`, `.v.edge` and `.off`, and the rules of its command line: file names, which
+//! files a run reads and writes ([`plan`]).
 //!
 //! Readers take text already in memory and the file's name (for error messages); writers take
 //! borrowed flat arrays in the layout of [`crate::data::Output`] and write Triangle's exact
@@ -8,11 +9,13 @@
 
 pub mod format;
 pub mod naming;
+pub mod plan;
 pub mod read;
 pub mod write;
 
 pub use format::{g17, push_g17};
 pub use naming::{next_iteration_name, split_input_name, InputName};
+pub use plan::{plan_outputs, read_inputs, repeated_path, FileWriter, InputFiles, PlannedFile};
 pub use read::{
     check_vertex_indices, read_area, read_edge, read_ele, read_neigh, read_node, read_off,
     read_poly, read_voronoi_edge, AreaFile, EdgeFile, EleFile, FileError, NeighFile, NodeFile,
