@@ -256,22 +256,38 @@ fn read_text(path: &str, quiet: bool) -> Result<String, FileError> {
 /// temporary files are removed and nothing is left behind.
 fn write_all(planned: &[PlannedFile<'_>], quiet: bool) -> Result<(), Failure> {
     let temporary_name = |path: &str| format!("{path}.triangle-rs-{}.tmp", std::process::id());
-    let mut written: Vec<String> = Vec::new();
-    let cleanup = |written: &[String]| {
-        for temporary in written {
+    let written: Vec<String> = planned.iter().map(|f| temporary_name(&f.path)).collect();
+    let cleanup = || {
+        for temporary in &written {
             let _ = fs::remove_file(temporary);
         }
     };
-    for file in planned {
-        let temporary = temporary_name(&file.path);
-        let result = File::create(&temporary).and_then(|f| {
-            let mut w = BufWriter::with_capacity(1 << 20, f);
-            (file.write)(&mut w)?;
-            w.into_inner().map_err(|e| e.into_error()).map(drop)
-        });
-        written.push(temporary);
+    // Formatting numbers is most of the work: the files are written in parallel (the `.node`
+    // and the `.ele` of a large mesh take about as long as each other).
+    let results: Vec<std::io::Result<()>> = std::thread::scope(|scope| {
+        let jobs: Vec<_> = planned
+            .iter()
+            .zip(&written)
+            .map(|(file, temporary)| {
+                scope.spawn(move || {
+                    File::create(temporary).and_then(|f| {
+                        let mut w = BufWriter::with_capacity(1 << 20, f);
+                        (file.write)(&mut w)?;
+                        w.into_inner().map_err(|e| e.into_error()).map(drop)
+                    })
+                })
+            })
+            .collect();
+        jobs.into_iter()
+            .map(|job| {
+                job.join()
+                    .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
+            })
+            .collect()
+    });
+    for (file, result) in planned.iter().zip(results) {
         if let Err(e) = result {
-            cleanup(&written);
+            cleanup();
             return Err(fail(format!("cannot write {}: {e}", file.path)));
         }
     }
@@ -280,7 +296,7 @@ fn write_all(planned: &[PlannedFile<'_>], quiet: bool) -> Result<(), Failure> {
             println!("Writing {}.", file.path);
         }
         if let Err(e) = fs::rename(temporary, &file.path) {
-            cleanup(&written);
+            cleanup();
             return Err(fail(format!("cannot write {}: {e}", file.path)));
         }
     }

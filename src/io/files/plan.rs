@@ -162,8 +162,8 @@ impl InputFiles {
     }
 }
 
-/// Writes one file's contents.
-pub type FileWriter<'a> = Box<dyn Fn(&mut dyn Write) -> io::Result<()> + 'a>;
+/// Writes one file's contents (`Send + Sync`: the files of a run may be written in parallel).
+pub type FileWriter<'a> = Box<dyn Fn(&mut dyn Write) -> io::Result<()> + Send + Sync + 'a>;
 
 /// One output file: where it goes and how to write it.
 pub struct PlannedFile<'a> {
