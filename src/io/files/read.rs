@@ -191,7 +191,14 @@ impl<'a> Lines<'a> {
             self.line_number += 1;
             let line = &rest[..end];
             let data = line.find('#').map_or(line, |hash| &line[..hash]);
-            if data.split_ascii_whitespace().any(starts_like_a_number) {
+            // Most lines start with a number: look at the first word before splitting them all.
+            let first = data.bytes().find(|b| !b.is_ascii_whitespace());
+            let holds_a_number = match first {
+                None => false,
+                Some(b'0'..=b'9' | b'.' | b'+' | b'-') => true,
+                Some(_) => data.split_ascii_whitespace().any(starts_like_a_number),
+            };
+            if holds_a_number {
                 return Some(Record {
                     file: self.file,
                     line: self.line_number,
@@ -304,19 +311,24 @@ impl<'a> Record<'a> {
 
     /// The next word that starts like a number.
     fn next_word(&mut self) -> Option<&'a str> {
+        // Byte by byte: ASCII whitespace never occurs inside a multi-byte UTF-8 character, so
+        // the slices below fall on character boundaries.
         loop {
-            let trimmed = self
-                .rest
-                .trim_start_matches(|c: char| c.is_ascii_whitespace());
-            if trimmed.is_empty() {
-                self.rest = trimmed;
+            let bytes = self.rest.as_bytes();
+            let start = bytes
+                .iter()
+                .position(|b| !b.is_ascii_whitespace())
+                .unwrap_or(bytes.len());
+            if start == bytes.len() {
+                self.rest = "";
                 return None;
             }
-            let end = trimmed
-                .find(|c: char| c.is_ascii_whitespace())
-                .unwrap_or(trimmed.len());
-            let word = &trimmed[..end];
-            self.rest = &trimmed[end..];
+            let end = bytes[start..]
+                .iter()
+                .position(|b| b.is_ascii_whitespace())
+                .map_or(bytes.len(), |n| start + n);
+            let word = &self.rest[start..end];
+            self.rest = &self.rest[end..];
             if starts_like_a_number(word) {
                 return Some(word);
             }
