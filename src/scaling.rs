@@ -23,8 +23,9 @@
 //!   over a degree-two denominator of at least `2^-480`) and the refinement's degree-four
 //!   quality tests stay far below the overflow threshold `2^1024`.
 //!
-//! `k` is `-hi` (the largest magnitude between 1 and 2, like a unit-size input) unless the finest
-//! bit needs more room, then as small as `lo + k ≥ -240` allows. An input with `hi - lo > 340`
+//! `k` is 0 when the input already meets both bounds (every input of ordinary magnitude);
+//! otherwise `-hi` (the largest magnitude between 1 and 2, like a unit-size input) unless the
+//! finest bit needs more room, then as small as `lo + k ≥ -240` allows. An input with `hi - lo > 340`
 //! cannot meet both bounds and is refused with [`Error::CoordinateRange`].
 
 use crate::data::UnsuitableFn;
@@ -135,6 +136,11 @@ impl Scaling {
                 hi - lo,
                 LARGEST_SCALED_EXPONENT + 1
             )));
+        }
+        if hi <= LARGEST_SCALED_EXPONENT && lo >= FINEST_SCALED_BIT {
+            // Already within both bounds: no scaling (ordinary inputs keep the fast paths that
+            // work in the caller's units, and every result is the same as scaled anyway).
+            return Ok(Scaling::default());
         }
         let exponent = (-hi).max(FINEST_SCALED_BIT - lo);
         Ok(Scaling { exponent })
