@@ -1,0 +1,75 @@
+use crate::data::{Hooks, Input, Output};
+use crate::options::{Options, SwitchSource};
+use crate::pipeline::triangulate;
+
+fn mesh(switches: &str, points: &[f64], segments: &[i32]) -> Output {
+    let options = Options::parse(switches, SwitchSource::Library).unwrap();
+    let input = Input {
+        points,
+        segments,
+        ..Input::default()
+    };
+    triangulate(&options, &input, &Hooks::default()).unwrap().0
+}
+
+fn smallest_angle(out: &Output) -> f64 {
+    let p = out.points.as_ref().unwrap();
+    let pt = |v: i32| [p[2 * v as usize], p[2 * v as usize + 1]];
+    let mut smallest = 180.0f64;
+    for t in out.triangles.as_ref().unwrap().chunks(3) {
+        for i in 0..3 {
+            let (a, b, c) = (pt(t[i]), pt(t[(i + 1) % 3]), pt(t[(i + 2) % 3]));
+            let (u, v) = ([b[0] - a[0], b[1] - a[1]], [c[0] - a[0], c[1] - a[1]]);
+            let angle = (u[0] * v[1] - u[1] * v[0])
+                .abs()
+                .atan2(u[0] * v[0] + u[1] * v[1])
+                .to_degrees();
+            smallest = smallest.min(angle);
+        }
+    }
+    smallest
+}
+
+const SQUARE: [f64; 8] = [0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0];
+const SQUARE_SEGMENTS: [i32; 8] = [0, 1, 1, 2, 2, 3, 3, 0];
+/// An outline with a notch and a crossbar meeting a slanted stroke.
+const SHAPE: [f64; 18] = [
+    0.0, 0.0, 1.0, 0.0, 1.2, 2.0, 1.4, 0.0, 2.4, 0.0, 1.6, 3.0, 0.8, 3.0, 1.1, 1.0, 1.3, 1.0,
+];
+const SHAPE_SEGMENTS: [i32; 18] = [0, 1, 1, 7, 7, 8, 8, 2, 2, 3, 3, 4, 4, 5, 5, 6, 6, 0];
+
+#[test]
+fn area_bound_holds() {
+    let out = mesh("pza0.01Q", &SQUARE, &SQUARE_SEGMENTS);
+    assert!(out.triangle_count >= 100, "{}", out.triangle_count);
+}
+
+#[test]
+fn angle_bound_holds_up_to_the_guaranteed_angle_and_beyond() {
+    for angle in [20.0, 25.0, 28.6, 30.0, 33.0] {
+        let out = mesh(&format!("pzq{angle}Q"), &SHAPE, &SHAPE_SEGMENTS);
+        assert!(
+            smallest_angle(&out) >= angle - 1e-9,
+            "q{angle}: {}",
+            smallest_angle(&out)
+        );
+        assert!(out.warnings.is_empty(), "{:?}", out.warnings);
+    }
+}
+
+#[test]
+fn too_large_an_angle_stops_with_a_warning() {
+    let out = mesh("pzq45Q", &SHAPE, &SHAPE_SEGMENTS);
+    assert!(
+        out.triangle_count > 20 && out.triangle_count < 10_000,
+        "{}",
+        out.triangle_count
+    );
+    assert!(
+        out.warnings
+            .iter()
+            .any(|w| w.contains("guaranteed to terminate")),
+        "{:?}",
+        out.warnings
+    );
+}
