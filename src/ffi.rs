@@ -171,11 +171,7 @@ pub unsafe extern "C" fn triangulate(
     let test = move |ox, oy, dx, dy, ax, ay, area| {
         callback.is_some_and(|f| f(ox, oy, dx, dy, ax, ay, area) != 0)
     };
-    let callback_ref: Option<&UnsuitableFn<'_>> = if callback.is_some() {
-        Some(&test)
-    } else {
-        None
-    };
+    let callback_ref = callback.is_some().then_some(&test as &UnsuitableFn<'_>);
     // SAFETY: the caller's contract is this function's.
     guarded(|| unsafe {
         run(
@@ -264,11 +260,7 @@ pub unsafe extern "C" fn triangulate_progress(
         let data = data;
         unsuitable.is_some_and(|f| f(ox, oy, dx, dy, ax, ay, area, data.0) != 0)
     };
-    let callback_ref: Option<&UnsuitableFn<'_>> = if unsuitable.is_some() {
-        Some(&test)
-    } else {
-        None
-    };
+    let callback_ref = unsuitable.is_some().then_some(&test as &UnsuitableFn<'_>);
     let report = move |p: Progress| {
         let data = data;
         if let Some(f) = progress {
@@ -277,11 +269,7 @@ pub unsafe extern "C" fn triangulate_progress(
             unsafe { f(p.phase as c_int, clamp(p.done), clamp(p.estimate), data.0) }
         }
     };
-    let progress_ref: Option<&ProgressFn<'_>> = if progress.is_some() {
-        Some(&report)
-    } else {
-        None
-    };
+    let progress_ref = progress.is_some().then_some(&report as &ProgressFn<'_>);
     // SAFETY: the caller's contract is this function's.
     guarded(|| unsafe {
         run(
