@@ -15,9 +15,9 @@ use crate::options::Options;
 /// a renumbering or the checked mesh.
 pub fn plain_delaunay(options: &Options) -> bool {
     !(options.uses_segments()
-        || options.edges
-        || options.neighbors
-        || options.voronoi
+        || options.output.edges
+        || options.output.neighbors
+        || options.output.voronoi
         || options.second_order
         || options.jettison
         || options.check)
@@ -41,8 +41,8 @@ pub fn delaunay_outputs(
 ) -> (Output, VoronoiOutput) {
     let n = mesh.points.len();
     let k = input.point_attribute_count;
-    let write_nodes = !options.no_node_output;
-    let mut markers = (write_nodes && !options.no_boundary_markers).then(|| {
+    let write_nodes = !options.output.no_node_output;
+    let mut markers = (write_nodes && !options.output.no_boundary_markers).then(|| {
         input
             .point_markers
             .map_or_else(|| vec![0; n], <[i32]>::to_vec)
@@ -86,7 +86,7 @@ pub fn delaunay_outputs(
     }
     output.triangle_count = triangle_count;
     output.corners = 3;
-    if !options.no_element_output {
+    if !options.output.no_element_output {
         // Same size and alignment: collected in place, no copy of the allocation.
         output.triangles = Some(corners.into_iter().map(|v| v as i32).collect());
     }
@@ -178,13 +178,13 @@ impl FinishedMesh<'_> {
         let mut triangles = Vec::with_capacity(slots);
         triangles.extend((0..slots as u32).filter(|&t| self.triangle_in_mesh[t as usize]));
         let mut triangle = Vec::new();
-        if options.neighbors || options.voronoi {
+        if options.output.neighbors || options.output.voronoi {
             triangle = vec![NONE; slots];
             for (i, &t) in triangles.iter().enumerate() {
                 triangle[t as usize] = i as u32;
             }
         }
-        let list_edges = options.edges || options.second_order || options.voronoi;
+        let list_edges = options.output.edges || options.second_order || options.output.voronoi;
         // Written at the running count and kept by advancing it: `e < f` is a coin toss per
         // half-edge, and a branch on it would be mispredicted half the time.
         let mut edges = if list_edges {
@@ -321,7 +321,7 @@ impl FinishedMesh<'_> {
         if let Some(markers) = output.point_markers.as_mut() {
             markers.extend(numbering.edges.iter().map(|&e| self.edge_marker(e)));
         }
-        if !options.no_element_output {
+        if !options.output.no_element_output {
             let mut tris = Vec::with_capacity(6 * numbering.triangles.len());
             for &t in &numbering.triangles {
                 tris.extend(
@@ -348,13 +348,13 @@ impl FinishedMesh<'_> {
     pub fn write(&self, options: &Options, numbering: &Numbering, output: &mut Output) {
         let base = options.first_index();
         let vid = |v: u32| numbering.vertex_index(v) as i32 + base;
-        let markers = !options.no_boundary_markers;
+        let markers = !options.output.no_boundary_markers;
         let n = self.mesh.points.len();
         let kept = |v: &usize| numbering.vertex.as_ref().is_none_or(|map| map[*v] != NONE);
 
         output.point_count = numbering.vertex_count;
         output.point_attribute_count = self.point_attribute_count;
-        if !options.no_node_output {
+        if !options.output.no_node_output {
             output.points = Some(match &numbering.vertex {
                 None => self.mesh.points.as_flattened().to_vec(),
                 Some(_) => (0..n)
@@ -382,7 +382,7 @@ impl FinishedMesh<'_> {
         output.corners = 3;
         if options.second_order {
             self.write_second_order(options, numbering, output);
-        } else if !options.no_element_output {
+        } else if !options.output.no_element_output {
             let mut tris = Vec::with_capacity(3 * numbering.triangles.len());
             match &numbering.vertex {
                 None => {
@@ -409,7 +409,7 @@ impl FinishedMesh<'_> {
             }
             output.triangles = Some(tris);
         }
-        if options.neighbors {
+        if options.output.neighbors {
             // Neighbour i lies opposite corner i, across the half-edge from corner i+1 to i+2.
             let mut neighbors = Vec::with_capacity(3 * numbering.triangles.len());
             for &t in &numbering.triangles {
@@ -428,7 +428,7 @@ impl FinishedMesh<'_> {
 
         let edges = &numbering.edges;
         output.edge_count = numbering.edge_count;
-        if options.edges {
+        if options.output.edges {
             output.edges = Some(
                 edges
                     .iter()
@@ -452,7 +452,7 @@ impl FinishedMesh<'_> {
             &numbering.boundary_edges
         };
         output.segment_count = segments.len();
-        if self.uses_segments && !options.no_poly_output {
+        if self.uses_segments && !options.output.no_poly_output {
             // Written from the outside, as Triangle writes hull segments.
             output.segments = Some(
                 segments

@@ -74,7 +74,7 @@ unsafe fn run(
         if output.is_null() {
             return Err(Error::NullArgument("out"));
         }
-        if options.voronoi && vorout.is_null() {
+        if options.output.voronoi && vorout.is_null() {
             return Err(Error::NullArgument("vorout"));
         }
         // SAFETY: non-NULL; the caller owns these structs for the duration of the call.

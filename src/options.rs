@@ -51,24 +51,6 @@ pub struct Options {
     pub conforming_delaunay: bool,
     /// `j`: jettison vertices that are not part of the final mesh.
     pub jettison: bool,
-    /// `e`: output the edge list.
-    pub edges: bool,
-    /// `v`: output the Voronoi diagram.
-    pub voronoi: bool,
-    /// `n`: output triangle neighbours.
-    pub neighbors: bool,
-    /// `g`: write a Geomview `.off` file (command line only).
-    pub geomview: bool,
-    /// `B`: no boundary markers in the output.
-    pub no_boundary_markers: bool,
-    /// `P`: no output segments.
-    pub no_poly_output: bool,
-    /// `N`: no output vertices.
-    pub no_node_output: bool,
-    /// `E`: no output triangles.
-    pub no_element_output: bool,
-    /// `I`: no iteration numbers in file names (command line only).
-    pub no_iteration_numbers: bool,
     /// `O`: ignore holes.
     pub ignore_holes: bool,
     /// `X`: no exact arithmetic.
@@ -97,6 +79,49 @@ pub struct Options {
     pub help: bool,
     /// `w` (1) or `W` (2): weighted / regular triangulation (parsed; not supported yet).
     pub weighted: u8,
+    /// What to write: the output arrays and files (`e`, `v`, `n`, `g`, `B`, `P`, `N`, `E`, `I`).
+    pub output: OutputOptions,
+}
+
+/// The switches that choose what is written rather than what is computed: extra outputs (edges,
+/// Voronoi diagram, neighbours, the `.off` file) and outputs left out (markers, segments,
+/// vertices, triangles, iteration numbers). The command-line program computes everything and
+/// applies the suppressions when writing files; the C ABI applies them to the output struct.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct OutputOptions {
+    /// `e`: output the edge list.
+    pub edges: bool,
+    /// `v`: output the Voronoi diagram.
+    pub voronoi: bool,
+    /// `n`: output triangle neighbours.
+    pub neighbors: bool,
+    /// `g`: write a Geomview `.off` file (command line only).
+    pub geomview: bool,
+    /// `B`: no boundary markers in the output.
+    pub no_boundary_markers: bool,
+    /// `P`: no output segments.
+    pub no_poly_output: bool,
+    /// `N`: no output vertices.
+    pub no_node_output: bool,
+    /// `E`: no output triangles.
+    pub no_element_output: bool,
+    /// `I`: no iteration numbers in file names (command line only).
+    pub no_iteration_numbers: bool,
+}
+
+impl OutputOptions {
+    /// The same extra outputs, with nothing left out (no `B`, `P`, `N`, `E`): what a caller that
+    /// applies the suppressions itself (the command-line program, when writing files) asks of
+    /// the engine.
+    pub fn without_suppressions(&self) -> OutputOptions {
+        OutputOptions {
+            no_boundary_markers: false,
+            no_poly_output: false,
+            no_node_output: false,
+            no_element_output: false,
+            ..self.clone()
+        }
+    }
 }
 
 impl Options {
@@ -129,15 +154,15 @@ impl Options {
                 b'c' => o.convex_hull = true,
                 b'D' | b'L' => o.conforming_delaunay = true,
                 b'j' => o.jettison = true,
-                b'e' => o.edges = true,
-                b'v' => o.voronoi = true,
-                b'n' => o.neighbors = true,
-                b'g' => o.geomview = true,
-                b'B' => o.no_boundary_markers = true,
-                b'P' => o.no_poly_output = true,
-                b'N' => o.no_node_output = true,
-                b'E' => o.no_element_output = true,
-                b'I' if source == SwitchSource::CommandLine => o.no_iteration_numbers = true,
+                b'e' => o.output.edges = true,
+                b'v' => o.output.voronoi = true,
+                b'n' => o.output.neighbors = true,
+                b'g' => o.output.geomview = true,
+                b'B' => o.output.no_boundary_markers = true,
+                b'P' => o.output.no_poly_output = true,
+                b'N' => o.output.no_node_output = true,
+                b'E' => o.output.no_element_output = true,
+                b'I' if source == SwitchSource::CommandLine => o.output.no_iteration_numbers = true,
                 b'h' if source == SwitchSource::CommandLine => o.help = true,
                 b'O' => o.ignore_holes = true,
                 b'X' => o.no_exact = true,
@@ -300,33 +325,46 @@ mod tests {
     fn exponent_notation_is_an_improvement() {
         let o = lib("pa1e-5");
         assert_eq!(o.max_area, Some(1e-5));
-        assert!(!o.edges);
+        assert!(!o.output.edges);
         assert_eq!(lib("q2.5e1").min_angle, Some(25.0));
         assert_eq!(lib("pa1E+2").max_area, Some(100.0));
         // An `e` not followed by a digit (or sign and digit) stays the edge switch.
         let o = lib("pa1e");
         assert_eq!(o.max_area, Some(1.0));
-        assert!(o.edges);
+        assert!(o.output.edges);
         let o = lib("pa2e-");
         assert_eq!(o.max_area, Some(2.0));
-        assert!(o.edges);
+        assert!(o.output.edges);
         let o = lib("pq30en");
         assert_eq!(o.min_angle, Some(30.0));
-        assert!(o.edges && o.neighbors);
+        assert!(o.output.edges && o.output.neighbors);
     }
 
     #[test]
     fn switch_letters_and_derived_rules() {
         let o = lib("Qz{pceo2YYnvBPNEIOXjs}");
-        assert!(o.quiet && o.zero_based && o.pslg && o.convex_hull && o.edges && o.second_order);
+        assert!(
+            o.quiet && o.zero_based && o.pslg && o.convex_hull && o.output.edges && o.second_order
+        );
         assert_eq!(o.no_steiner_on_segments, 2);
-        assert!(o.neighbors && o.voronoi && o.no_boundary_markers && o.no_poly_output);
-        assert!(o.no_node_output && o.no_element_output && o.ignore_holes && o.no_exact);
+        assert!(
+            o.output.neighbors
+                && o.output.voronoi
+                && o.output.no_boundary_markers
+                && o.output.no_poly_output
+        );
+        assert!(
+            o.output.no_node_output && o.output.no_element_output && o.ignore_holes && o.no_exact
+        );
         assert!(o.jettison && o.split_segments);
-        assert!(!o.no_iteration_numbers, "I is not parsed in the library");
+        assert!(
+            !o.output.no_iteration_numbers,
+            "I is not parsed in the library"
+        );
         assert!(
             Options::parse("I", SwitchSource::CommandLine)
                 .unwrap()
+                .output
                 .no_iteration_numbers
         );
         assert!(!lib("o").second_order);

@@ -396,7 +396,7 @@ fn run<P: Predicates>(
     if options.check {
         output.warnings.push(check_mesh::<P>(&meshed));
     }
-    if options.pslg && !options.no_poly_output {
+    if options.pslg && !options.output.no_poly_output {
         output.alias_holes_and_regions = true;
         output.hole_count = input.hole_count();
         output.region_count = input.region_count();
@@ -542,7 +542,7 @@ fn write_outputs(
             .copied()
             .collect();
         output.triangle_attribute_count = domain.attribute_count;
-        output.triangle_attributes = (!options.no_element_output).then_some(attributes);
+        output.triangle_attributes = (!options.output.no_element_output).then_some(attributes);
     }
     let base = options.first_index();
     let mut voronoi = VoronoiOutput {
@@ -551,7 +551,7 @@ fn write_outputs(
         edge_count: output.edge_count,
         diagram: None,
     };
-    if options.voronoi {
+    if options.output.voronoi {
         let dual = DualOf {
             triangles: &numbering.triangles,
             triangle_index: &numbering.triangle,

@@ -339,7 +339,7 @@ fn run(args: &[String]) -> Result<(), Failure> {
         print!("{USAGE}");
         return Ok(());
     };
-    if options.no_iteration_numbers && options.refine {
+    if options.output.no_iteration_numbers && options.refine {
         return Err(fail(
             "-I cannot be used when refining (-r): it would overwrite the input .ele file",
         ));
@@ -355,10 +355,7 @@ fn run(args: &[String]) -> Result<(), Failure> {
     // The engine computes everything; the switches that only suppress output files are applied
     // when writing, so statistics and the picture always see the whole mesh.
     let engine_options = Options {
-        no_node_output: false,
-        no_element_output: false,
-        no_poly_output: false,
-        no_boundary_markers: false,
+        output: options.output.without_suppressions(),
         ..options.clone()
     };
     // With `V`, the phases and their counts go to stderr as they run (refinement every so often).
@@ -389,7 +386,7 @@ fn run(args: &[String]) -> Result<(), Failure> {
         }
     }
 
-    let output_base = if options.no_iteration_numbers {
+    let output_base = if options.output.no_iteration_numbers {
         base.clone()
     } else {
         next_iteration_name(&base)
@@ -451,7 +448,7 @@ fn svg_file<'a>(
         voronoi: voronoi
             .diagram
             .as_ref()
-            .filter(|_| options.voronoi)
+            .filter(|_| options.output.voronoi)
             .map(|d| SvgVoronoi {
                 points: &d.points,
                 edges: &d.edges,

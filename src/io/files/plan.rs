@@ -194,7 +194,7 @@ pub fn plan_outputs<'a>(
     voronoi: &'a VoronoiOutput,
 ) -> Result<Vec<PlannedFile<'a>>, FileError> {
     let generated_by = Some(generated_by);
-    let markers = !options.no_boundary_markers;
+    let markers = !options.output.no_boundary_markers;
     let (holes, regions) = inputs.holes_and_regions();
     let vertices_from_node_file = inputs.vertex_file.ends_with(".node");
     let mut planned: Vec<PlannedFile<'a>> = Vec::new();
@@ -220,22 +220,22 @@ pub fn plan_outputs<'a>(
     };
 
     // -I writes no .node over the input .node (a .poly's own vertices are still written).
-    let node_would_overwrite_input = options.no_iteration_numbers && vertices_from_node_file;
-    if !options.no_node_output && !node_would_overwrite_input {
+    let node_would_overwrite_input = options.output.no_iteration_numbers && vertices_from_node_file;
+    if !options.output.no_node_output && !node_would_overwrite_input {
         planned.push(PlannedFile {
             path: path("node"),
             write: Box::new(move |mut w| write_node(&mut w, &node, first_index, generated_by)),
         });
     }
-    if !options.no_element_output {
+    if !options.output.no_element_output {
         planned.push(PlannedFile {
             path: path("ele"),
             write: Box::new(move |mut w| write_ele(&mut w, &ele, first_index, generated_by)),
         });
     }
     if (options.pslg || options.convex_hull)
-        && !options.no_poly_output
-        && !options.no_iteration_numbers
+        && !options.output.no_poly_output
+        && !options.output.no_iteration_numbers
     {
         let data = PolyData {
             vertices: PolyVertices::InNodeFile {
@@ -256,7 +256,7 @@ pub fn plan_outputs<'a>(
             write: Box::new(move |mut w| write_poly(&mut w, &data, first_index, generated_by)),
         });
     }
-    if options.edges {
+    if options.output.edges {
         let edges = required(&mesh.edges, "edge list")?;
         let edge_markers = if markers {
             Some(required(&mesh.edge_markers, "edge marker list")?)
@@ -270,7 +270,7 @@ pub fn plan_outputs<'a>(
             }),
         });
     }
-    if options.voronoi {
+    if options.output.voronoi {
         let diagram = voronoi.diagram.as_ref().ok_or_else(|| FileError {
             file: "Voronoi diagram".into(),
             line: None,
@@ -301,14 +301,14 @@ pub fn plan_outputs<'a>(
             }),
         });
     }
-    if options.neighbors {
+    if options.output.neighbors {
         let neighbors = required(&mesh.neighbors, "neighbour list")?;
         planned.push(PlannedFile {
             path: path("neigh"),
             write: Box::new(move |mut w| write_neigh(&mut w, neighbors, first_index, generated_by)),
         });
     }
-    if options.geomview {
+    if options.output.geomview {
         let edge_count = mesh.edge_count;
         planned.push(PlannedFile {
             path: path("off"),
