@@ -1,0 +1,265 @@
+//! Recovering a segment whose line crosses triangles: the cavity of the crossed triangles is
+//! retriangulated in place as the constrained Delaunay triangulations of the two polygons on
+//! either side of the segment (Anglada 1997; Shewchuk and Brown 2015), with Sloan's flips
+//! (1993) and a Lawson restore as the fallback when the cavity's plan is refused.
+
+use super::*;
+
+/// A polygon of the cavity: its vertices in order (and their positions, contiguous for the
+/// circle tests) and, per consecutive pair `(v[i], v[i+1])`, the half-edge from `v[i]` to
+/// `v[i+1]` that stays (outside the cavity, across its boundary).
+#[derive(Clone, Default)]
+pub(super) struct Chain {
+    vertices: Vec<u32>,
+    points: Vec<Point>,
+    outer: Vec<u32>,
+}
+
+impl Chain {
+    pub(super) fn clear(&mut self) {
+        self.vertices.clear();
+        self.points.clear();
+        self.outer.clear();
+    }
+
+    pub(super) fn push(&mut self, vertex: u32, point: Point) {
+        self.vertices.push(vertex);
+        self.points.push(point);
+    }
+
+    pub(super) fn reverse(&mut self) {
+        self.vertices.reverse();
+        self.points.reverse();
+        self.outer.reverse();
+    }
+}
+
+#[derive(Clone, Copy)]
+pub(super) enum Polygon {
+    Left,
+    Right,
+}
+
+impl<P: Predicates> Constrainer<P> {
+    /// Replaces the triangles that the segment `a`–`b` crosses (the edges in
+    /// `self.scratch.crossed`, which must be the complete list from `a` to `b`) by the constrained
+    /// Delaunay triangulations of the two polygons the segment cuts their union into, and marks
+    /// the segment's edge as segment `id`. Returns false, changing nothing, if triangles are
+    /// tagged or the plan is not a valid triangulation (a new triangle not counter-clockwise, an
+    /// edge with the cavity on both sides not matched up); neither was seen with exact
+    /// predicates, and the caller then recovers the segment by flips.
+    pub(super) fn retriangulate_cavity(&mut self, a: u32, b: u32, id: u32) -> bool {
+        if !self.inserter.mesh.tag.is_empty() {
+            // Tags would have to be assigned per new triangle; the flip path does that.
+            return false;
+        }
+        let Scratch {
+            crossed,
+            left,
+            right,
+            slots,
+            tasks,
+            triangles,
+            outer_links,
+            sorted_slots,
+            inner_links,
+            ..
+        } = &mut self.scratch;
+        let mesh = &self.inserter.mesh;
+        let k = crossed.len();
+        debug_assert!(k > 0);
+        // The crossed triangles T0 … Tk: T0 = (a, r1, l1) holds the first crossed edge r1 → l1;
+        // each later one adds its apex to the left or the right chain; Tk has apex b. A chain
+        // edge's outer half-edge is the twin of the cavity triangle's half-edge on it.
+        // The right chain is collected from a to b here and reversed below.
+        left.clear();
+        right.clear();
+        slots.clear();
+        let h1 = crossed[0];
+        slots.push(triangle_of(h1));
+        let (pa, l1, r1) = (mesh.point(a), mesh.dest(h1), mesh.origin(h1));
+        left.push(a, pa);
+        left.push(l1, mesh.point(l1));
+        left.outer.push(mesh.twin(next(h1))); // a → l1
+        right.push(a, pa);
+        right.push(r1, mesh.point(r1));
+        right.outer.push(mesh.twin(prev(h1))); // r1 → a
+        for i in 0..k {
+            let f = mesh.twin(crossed[i]); // left → right, in the next triangle of the cavity
+            slots.push(triangle_of(f));
+            let z = mesh.apex(f);
+            let pz = mesh.point(z);
+            let last = i + 1 == k;
+            // The next crossed edge is right → z when z is on the left, z → left otherwise.
+            if last || crossed[i + 1] == next(f) {
+                left.push(z, pz);
+                left.outer.push(mesh.twin(prev(f))); // left → z
+            }
+            if last || crossed[i + 1] == prev(f) {
+                right.push(z, pz);
+                right.outer.push(mesh.twin(next(f))); // z → right
+            }
+        }
+        debug_assert!(*left.vertices.last().unwrap() == b && *right.vertices.last().unwrap() == b);
+        right.reverse();
+        // The union of the crossed triangles need not be a simple polygon: the segment can leave
+        // the star of a vertex and enter it again, so a chain may visit a vertex twice, and an
+        // edge between two crossed triangles that the segment does not cross lies on a chain
+        // twice, once in each direction (Shewchuk and Brown 2015 allow the same). Such an edge's
+        // "outer" half-edge is in the cavity; its two new half-edges are joined to each other.
+        sorted_slots.clear();
+        sorted_slots.extend_from_slice(slots);
+        sorted_slots.sort_unstable();
+        inner_links.clear();
+
+        // Plan the new triangles: top-down from each polygon's base (the segment), each
+        // sub-polygon's base joined to the half-edge of its parent triangle. Slot `slots[j]` takes
+        // the `j`-th new triangle; the left polygon's first triangle holds the segment a → b, the
+        // right polygon's first one b → a.
+        triangles.clear();
+        outer_links.clear();
+        tasks.clear();
+        tasks.push((Polygon::Right, 0, right.vertices.len() as u32 - 1, NONE));
+        tasks.push((Polygon::Left, 0, left.vertices.len() as u32 - 1, NONE));
+        while let Some((polygon, first, last, join)) = tasks.pop() {
+            let chain = match polygon {
+                Polygon::Left => &*left,
+                Polygon::Right => &*right,
+            };
+            if last == first + 1 {
+                // A boundary edge of the cavity: the half-edge `join` becomes its twin.
+                let outer = chain.outer[first as usize];
+                if sorted_slots.binary_search(&triangle_of(outer)).is_ok() {
+                    inner_links.push((join, outer, mesh.segment_of(outer)));
+                } else {
+                    outer_links.push((join, outer));
+                }
+                continue;
+            }
+            let (v, points) = (&chain.vertices, &chain.points);
+            let (u, w) = (points[first as usize], points[last as usize]);
+            let apex = first
+                + 1
+                + P::smallest_circle(u, w, &points[first as usize + 1..last as usize]) as u32;
+            if P::orient2d(u, w, points[apex as usize]) <= 0.0 {
+                return false;
+            }
+            let t = slots[triangles.len()];
+            let corners = [v[first as usize], v[last as usize], v[apex as usize]];
+            let join = if join == NONE && matches!(polygon, Polygon::Right) {
+                // The right polygon's base b → a is the twin of the left one's a → b, which is the
+                // first new triangle's base (the left polygon is planned first).
+                3 * slots[0]
+            } else {
+                join
+            };
+            triangles.push((corners, join));
+            // Triangle (u, w, c): w → c at 3t + 1 faces the sub-polygon (apex … last), c → u at
+            // 3t + 2 the sub-polygon (first … apex).
+            tasks.push((polygon, apex, last, 3 * t + 1));
+            tasks.push((polygon, first, apex, 3 * t + 2));
+        }
+        debug_assert_eq!(triangles.len(), slots.len());
+        if !inner_links.is_empty() {
+            // Each such edge came up twice, as old half-edge h and as its old twin: pair the two
+            // new half-edges by the edge's smaller old half-edge.
+            if inner_links.len() % 2 != 0 {
+                return false;
+            }
+            for link in inner_links.iter_mut() {
+                link.1 = link.1.min(mesh.twin(link.1));
+            }
+            inner_links.sort_unstable_by_key(|&(_, key, _)| key);
+            if inner_links
+                .chunks_exact(2)
+                .any(|pair| pair[0].1 != pair[1].1)
+            {
+                return false;
+            }
+        }
+
+        // Commit: the slots' triangles are rewritten, joined to each other and to the outside.
+        let mesh = &mut self.inserter.mesh;
+        for (&t, &([u, w, c], join)) in slots.iter().zip(triangles.iter()) {
+            let base = 3 * t as usize;
+            mesh.corners[base..base + 3].copy_from_slice(&[u, w, c]);
+            mesh.segment[base..base + 3].fill(NONE);
+            if join != NONE {
+                mesh.twins[base] = join;
+                mesh.twins[join as usize] = base as u32;
+            }
+            // Every cavity vertex is a corner of a new triangle: its outgoing half-edge is
+            // refreshed here (the old one may have been in the cavity).
+            mesh.vertex_edge[u as usize] = base as u32;
+            mesh.vertex_edge[w as usize] = base as u32 + 1;
+            mesh.vertex_edge[c as usize] = base as u32 + 2;
+        }
+        for &(inner, outer) in outer_links.iter() {
+            mesh.twins[inner as usize] = outer;
+            mesh.twins[outer as usize] = inner;
+            mesh.segment[inner as usize] = mesh.segment[outer as usize];
+        }
+        for pair in inner_links.chunks_exact(2) {
+            // The segment did not cross this edge, so it may be a segment: it stays one.
+            let (x, y, segment) = (pair[0].0, pair[1].0, pair[0].2);
+            mesh.twins[x as usize] = y;
+            mesh.twins[y as usize] = x;
+            mesh.segment[x as usize] = segment;
+            mesh.segment[y as usize] = segment;
+        }
+        mesh.set_segment(3 * slots[0], id);
+        true
+    }
+
+    /// Removes the edges crossing the new segment `a`–`b` by Sloan's flips, marks the recovered
+    /// edge as segment `id`, then restores the constrained Delaunay property around the new edges.
+    pub(super) fn remove_crossings(
+        &mut self,
+        a: u32,
+        b: u32,
+        crossed: Vec<(u32, u32)>,
+        id: u32,
+    ) -> Result<(), Error> {
+        let lost = |what: &str| Error::Internal(format!("segment recovery by flips: {what}"));
+        let mut queue: VecDeque<(u32, u32)> = crossed.into();
+        let mut new_edges = Vec::new();
+        let mut stalls = 0usize;
+        while let Some((u, v)) = queue.pop_front() {
+            let mesh = &self.inserter.mesh;
+            let e = mesh
+                .find_edge(u, v)
+                .ok_or_else(|| lost("a crossing edge is gone"))?;
+            let f = mesh.twin(e);
+            let (p, q) = (mesh.apex(e), mesh.apex(f));
+            // The quadrilateral u, q, v, p is strictly convex when p–q crosses u–v.
+            let convex = self.orient(p, q, u) * self.orient(p, q, v) < 0.0;
+            if !convex {
+                queue.push_back((u, v));
+                stalls += 1;
+                if stalls > 4 * queue.len() * queue.len() + 16 {
+                    return Err(lost("no progress"));
+                }
+                continue;
+            }
+            stalls = 0;
+            self.inserter.mesh.flip(e);
+            let crosses = {
+                let (op, oq) = (self.orient(a, b, p), self.orient(a, b, q));
+                p != a && p != b && q != a && q != b && op * oq < 0.0
+            };
+            if crosses {
+                queue.push_back((p, q));
+            } else {
+                new_edges.push((p, q));
+            }
+        }
+        let e = self
+            .inserter
+            .mesh
+            .find_edge(a, b)
+            .ok_or_else(|| lost("the segment is not an edge afterwards"))?;
+        self.inserter.mesh.set_segment(e, id);
+        self.restore_delaunay(new_edges);
+        Ok(())
+    }
+}
