@@ -274,11 +274,10 @@ fn run<P: Predicates>(
         && assemble::plain_delaunay(options)
         && mesh.triangle_count() > 0
     {
-        let triangles = mesh.triangle_count() as u64;
-        hooks.report(Phase::Output, 0, triangles);
-        let outputs = assemble::delaunay_outputs(options, input, mesh, output);
-        hooks.report(Phase::Output, triangles, triangles);
-        return Ok(outputs);
+        let slots = mesh.triangle_count();
+        return Ok(output_phase(hooks, slots, || {
+            assemble::delaunay_outputs(options, input, mesh, output)
+        }));
     }
     let k = input.point_attribute_count;
     let mut meshed = Meshed {
@@ -401,11 +400,18 @@ fn run<P: Predicates>(
         output.hole_count = input.hole_count();
         output.region_count = input.region_count();
     }
-    let triangles = meshed.mesh.triangle_count() as u64;
-    hooks.report(Phase::Output, 0, triangles);
-    let outputs = write_outputs(options, input, &meshed, output, scaling)?;
-    hooks.report(Phase::Output, triangles, triangles);
-    Ok(outputs)
+    let slots = meshed.mesh.triangle_count();
+    output_phase(hooks, slots, || {
+        write_outputs(options, input, &meshed, output, scaling)
+    })
+}
+
+/// Builds the outputs of a mesh of `slots` triangle slots, reporting the output phase.
+fn output_phase<T>(hooks: &Hooks<'_>, slots: u32, build: impl FnOnce() -> T) -> T {
+    hooks.report(Phase::Output, 0, u64::from(slots));
+    let outputs = build();
+    hooks.report(Phase::Output, u64::from(slots), u64::from(slots));
+    outputs
 }
 
 /// Inserts the input segments (skipping those whose two endpoints are one vertex, with a warning).

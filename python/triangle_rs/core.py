@@ -4,7 +4,9 @@ every API of this package goes through (errors, the per-call unsuitable callback
 from __future__ import annotations
 
 import ctypes
+import sys
 import threading
+import time
 from typing import Callable, Optional
 
 from ._library import CTriangulateIO, Library, ProgressCallback, UnsuitableCallback, load_library
@@ -188,9 +190,6 @@ class _ProgressDisplay:
         self._shown = 0.0
 
     def update(self, phase: str, done: int, estimate: int) -> None:
-        import sys
-        import time
-
         if self._tqdm is not None:
             if phase != self._phase:
                 self.close()
@@ -210,8 +209,6 @@ class _ProgressDisplay:
         sys.stderr.flush()
 
     def close(self) -> None:
-        import sys
-
         if self._bar is not None:
             self._bar.close()
             self._bar = None

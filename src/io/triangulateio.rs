@@ -150,9 +150,7 @@ pub unsafe fn input_from_raw<'a>(
     };
     if options.refine {
         let ntri = count("numberoftriangles", tio.numberoftriangles)?;
-        if tio.numberofcorners != 3 && tio.numberofcorners != 6 {
-            return Err(Error::BadCorners(tio.numberofcorners as i64));
-        }
+        // 3 or 6: checked by the engine (`pipeline`), for every caller.
         let corners = count("numberofcorners", tio.numberofcorners)?;
         let ntattr = count("numberoftriangleattributes", tio.numberoftriangleattributes)?;
         input.corners = corners;

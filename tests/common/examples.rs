@@ -90,6 +90,21 @@ fn take_segments(input: &mut MeshInput, poly: &PolyFile, first: i32) {
     input.segment_markers = poly.segment_markers.clone();
 }
 
+/// A `.poly` file with its own vertices as a zero-based input: vertices, segments, holes and
+/// regions (also the test shapes of tests/data/shapes/, see [`super::pslg::shape`]).
+pub fn poly_input(poly: &PolyFile) -> MeshInput {
+    let first = poly.vertices.first_number.unwrap_or(1) as i32;
+    let mut input = node_input(&poly.vertices);
+    take_segments(&mut input, poly, first);
+    input.holes = pairs(&poly.holes);
+    input.regions = poly
+        .regions
+        .chunks_exact(4)
+        .map(|r| [r[0], r[1], r[2], r[3]])
+        .collect();
+    input
+}
+
 /// An area switch (`a<x>`) that makes a few hundred triangles of `points`' bounding box; `x` a
 /// power of two, which prints exactly in decimals (Triangle reads no exponent notation).
 pub fn area_switch(points: &[Point]) -> String {
@@ -120,19 +135,10 @@ pub fn example_files(dir: &Path) -> Vec<ExampleFile> {
             if poly.vertices.point_count() == 0 {
                 continue; // the segments of a mesh (`x.1.poly`): read with its `.ele`
             }
-            let first = poly.vertices.first_number.unwrap_or(1) as i32;
-            let mut input = node_input(&poly.vertices);
-            take_segments(&mut input, &poly, first);
-            input.holes = pairs(&poly.holes);
-            input.regions = poly
-                .regions
-                .chunks_exact(4)
-                .map(|r| [r[0], r[1], r[2], r[3]])
-                .collect();
             found.push(ExampleFile {
                 name: file.clone(),
                 kind: Kind::Poly,
-                input,
+                input: poly_input(&poly),
             });
         } else if let Some(base) = file.strip_suffix(".node") {
             let numbered = base

@@ -14,6 +14,7 @@ use triangle_rs::io::files::read_poly;
 
 use super::call::MeshInput;
 use super::checks::{convex_hull, orient2d};
+use super::examples::poly_input;
 use super::points::Point;
 use super::rng::SplitMix64;
 
@@ -150,39 +151,10 @@ pub fn shape_path(name: &str) -> std::path::PathBuf {
 
 /// A classic shape read with our `.poly` reader (regions included), zero-based.
 pub fn shape(name: &str) -> Pslg {
-    from_poly_file(&shape_path(name), name)
-}
-
-/// A PSLG read from a `.poly` file (vertices, segments, holes, regions), renumbered from zero.
-pub fn from_poly_file(path: &std::path::Path, name: &str) -> Pslg {
-    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let path = shape_path(name);
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let poly = read_poly(&text, &path.to_string_lossy(), true).unwrap_or_else(|e| panic!("{e}"));
-    let first = poly.vertices.first_number.unwrap_or(1) as i32;
-    let input = MeshInput {
-        points: poly
-            .vertices
-            .points
-            .chunks_exact(2)
-            .map(|c| [c[0], c[1]])
-            .collect(),
-        attributes: poly.vertices.attributes.clone(),
-        attribute_count: poly.vertices.attribute_count,
-        markers: poly.vertices.markers.clone(),
-        segments: poly
-            .segments
-            .chunks_exact(2)
-            .map(|s| [s[0] - first, s[1] - first])
-            .collect(),
-        segment_markers: poly.segment_markers.clone(),
-        holes: poly.holes.chunks_exact(2).map(|c| [c[0], c[1]]).collect(),
-        regions: poly
-            .regions
-            .chunks_exact(4)
-            .map(|r| [r[0], r[1], r[2], r[3]])
-            .collect(),
-        ..MeshInput::default()
-    };
-    Pslg::new(name.to_string(), input)
+    Pslg::new(name.to_string(), poly_input(&poly))
 }
 
 /// Vertex markers: mostly 0, some positive, one negative value.
