@@ -27,8 +27,10 @@ use crate::geometry::{Point, Predicates};
 use crate::mesh::{next, prev, triangle_of, Mesh, GHOST, NONE};
 
 // The parts: this file inserts segments (walks, crossings, vertices on segments, hull segments,
-// point location for holes and regions); `cavity` recovers a segment across crossed triangles.
+// point location for holes and regions); `cavity` recovers a segment across crossed triangles;
+// `snap` makes vertices within a distance of a segment vertices of it (before refinement).
 mod cavity;
+mod snap;
 #[cfg(test)]
 mod tests;
 
@@ -390,7 +392,7 @@ impl<P: Predicates> Constrainer<P> {
     /// that the vertex joins its ends (Lawson flips then make the other edges around locally
     /// Delaunay again), and returns the vertex; a segment edge becomes the two edges to the
     /// vertex. Not when the edge is on the hull or the flip would not be valid.
-    pub fn flip_edge_onto_vertex(
+    fn flip_edge_onto_vertex(
         &mut self,
         e: u32,
         on_edge: impl Fn(Point, Point, Point) -> bool,
@@ -608,12 +610,12 @@ fn on_line(orientation: f64, a: Point, b: Point) -> bool {
 
 /// Whether `x`, near the line through `a` and `b`, lies before `b` seen from `a` (an edge from
 /// `a` to a vertex within rounding of the line may pass by `b`).
-pub(crate) fn before(a: Point, x: Point, b: Point) -> bool {
+fn before(a: Point, x: Point, b: Point) -> bool {
     let d = [b[0] - a[0], b[1] - a[1]];
     (x[0] - a[0]) * d[0] + (x[1] - a[1]) * d[1] < d[0] * d[0] + d[1] * d[1]
 }
 
 /// Whether `x`, on or near the line through `a` and `b`, lies on the side of `a` toward `b`.
-pub(crate) fn along(a: Point, x: Point, b: Point) -> bool {
+fn along(a: Point, x: Point, b: Point) -> bool {
     (x[0] - a[0]) * (b[0] - a[0]) + (x[1] - a[1]) * (b[1] - a[1]) > 0.0
 }

@@ -22,7 +22,7 @@
 
 use std::collections::{HashSet, VecDeque};
 
-use crate::algorithms::constrain::{along, before, Constrainer};
+use crate::algorithms::constrain::Constrainer;
 use crate::algorithms::delaunay::Location;
 use crate::algorithms::domain::Domain;
 use crate::data::{Phase, Progress, ProgressFn, UnsuitableFn};
@@ -30,7 +30,7 @@ use crate::geometry::{circumcenter, Point, Predicates};
 use crate::mesh::{next, prev, triangle_of, GHOST, NONE, OUTSIDE};
 
 // The parts: this file is the driver (strategy above the guaranteed angle, budgets, the runaway
-// limit, cancel and progress, snapping, the refinement loop, insertion bookkeeping).
+// limit, cancel and progress, the refinement loop, insertion bookkeeping).
 mod queue; // the bad-triangle queue
 mod segments; // encroachment and where subsegments are split
 #[cfg(test)]
@@ -247,7 +247,7 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
                 RUNAWAY_PER_TRIANGLE * self.inside_triangle_count() + self.size_estimate();
             self.runaway_limit = Some(expected.max(RUNAWAY_MINIMUM));
         }
-        self.snap_vertices_onto_segments();
+        self.cdt.snap_vertices_onto_segments(self.floor2);
         match self.quality.min_angle {
             Some(angle) if angle > GUARANTEED_ANGLE => self.refine_beyond_the_guarantee(angle),
             _ => {
@@ -429,48 +429,6 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         } else {
             f64::INFINITY
         };
-    }
-
-    /// Makes every vertex that lies within the floor distance of a subsegment, between its
-    /// ends, a vertex of it: the subsegment is flipped away and the two edges to the vertex
-    /// become the segment. Such a vertex is on the segment at the resolution refinement works
-    /// at (two segments at an angle of 10^-16 radians, which rounding makes of one line through
-    /// a vertex): left apart, the vertex encroaches the segment, every split point on it
-    /// encroaches back, and refinement would fill the sliver between them with vertices down to
-    /// the floor (Triangle stops with "Ran out of precision"). Subsegments on the hull are left
-    /// as they are (the runaway limit of [`Self::run`] still bounds the work there).
-    fn snap_vertices_onto_segments(&mut self) {
-        let floor2 = self.floor2;
-        let on_segment = |pu: Point, pv: Point, pw: Point| {
-            let length2 = (pv[0] - pu[0]).powi(2) + (pv[1] - pu[1]).powi(2);
-            let height = P::orient2d(pu, pv, pw); // |uv| times w's distance from the line
-            let near = |a: Point| (pw[0] - a[0]).powi(2) + (pw[1] - a[1]).powi(2) < floor2;
-            height * height < floor2 * length2
-                && along(pu, pw, pv)
-                && before(pu, pw, pv)
-                && !near(pu)
-                && !near(pv)
-        };
-        let mesh = &self.cdt.inserter.mesh;
-        // One half-edge per subsegment: the flip looks at the vertices on both sides.
-        let mut work: Vec<u32> = (0..mesh.corners.len() as u32)
-            .filter(|&e| mesh.is_segment(e) && e < mesh.twin(e))
-            .collect();
-        while let Some(e) = work.pop() {
-            let mesh = &self.cdt.inserter.mesh;
-            let (u, v) = (mesh.origin(e), mesh.dest(e));
-            if !mesh.is_segment(e) {
-                continue;
-            }
-            if let Some(w) = self.cdt.flip_edge_onto_vertex(e, on_segment) {
-                let mesh = &self.cdt.inserter.mesh;
-                work.extend(
-                    [(u, w), (w, v)]
-                        .into_iter()
-                        .filter_map(|(a, b)| mesh.find_edge(a, b)),
-                );
-            }
-        }
     }
 
     /// Splits encroached subsegments, then bad triangles, until none is left or a limit stops.
