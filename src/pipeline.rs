@@ -5,7 +5,7 @@ use crate::algorithms::constrain::Constrainer;
 use crate::algorithms::delaunay::{self, merge, order, Inserter, Triangulation};
 use crate::algorithms::domain::{carve, Domain};
 use crate::algorithms::reconstruct::reconstruct;
-use crate::algorithms::refine::{Quality, Refiner, VertexKind};
+use crate::algorithms::refine::{refine, Quality};
 use crate::algorithms::voronoi::{voronoi_diagram, DualOf};
 use crate::assemble::{self, FinishedMesh, Numbering};
 use crate::data::{Hooks, Input, Output, Phase, UnsuitableFn, VoronoiOutput};
@@ -366,24 +366,23 @@ fn run<P: Predicates>(
                 cancel: hooks.cancel,
                 progress: hooks.progress,
             };
-            let kinds = vec![VertexKind::Input; cdt.inserter.mesh.points.len()];
-            let refiner = Refiner::new(
-                options.conforming_delaunay,
+            hooks.report(Phase::Refinement, 0, 0);
+            let report = refine(
                 &mut cdt,
                 &meshed.domain,
                 &quality,
-                kinds,
+                options.conforming_delaunay,
                 &mut meshed.point_attributes,
                 k,
             );
-            hooks.report(Phase::Refinement, 0, 0);
-            let report = refiner.run();
             hooks.report(
                 Phase::Refinement,
                 report.steiner_points,
                 report.steiner_points,
             );
-            output.warnings.extend(report.warnings);
+            output
+                .warnings
+                .extend(report.warnings.iter().map(ToString::to_string));
         }
         meshed.segment_markers = std::mem::take(&mut cdt.markers);
         meshed.mesh = cdt.inserter.mesh;

@@ -1,7 +1,7 @@
 //! The bad-triangle queue: skinny triangles by their shortest edge's length relative to the
 //! domain (shortest first), then those that are only too large, first in first out.
 
-use super::*;
+use std::collections::VecDeque;
 
 /// A queued bad triangle: its corners (it may be gone by the time it is taken out).
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -73,3 +73,52 @@ fn too_large_an_angle_stops_with_a_warning() {
         out.warnings
     );
 }
+
+#[test]
+fn warnings_read_as_they_always_have() {
+    use super::Warning;
+    // The texts the library, the C ABI and the command line have always printed.
+    let cases = [
+        (Warning::Cancelled, "Refinement was cancelled; the mesh is valid but not refined."),
+        (
+            Warning::AngleNotReached {
+                angle: 40.0,
+                steiner_points: 438,
+            },
+            "A minimum angle of 40° is above 28.6°, the largest for which Delaunay refinement is guaranteed \
+             to terminate, and this input needs more: refinement stopped after 438 Steiner points with some \
+             angles below 40° but none below 28.6° (the mesh is valid).",
+        ),
+        (
+            Warning::AngleNotReached {
+                angle: 33.5,
+                steiner_points: 7,
+            },
+            "A minimum angle of 33.5° is above 28.6°, the largest for which Delaunay refinement is guaranteed \
+             to terminate, and this input needs more: refinement stopped after 7 Steiner points with some \
+             angles below 33.5° but none below 28.6° (the mesh is valid).",
+        ),
+        (
+            Warning::Runaway {
+                steiner_points: 1_000_000,
+            },
+            "Refinement stopped after 1000000 Steiner points, far more than this input and its area bounds \
+             account for: some of its features are too thin for the minimum angle (the mesh is valid; the S \
+             switch sets a limit of your own).",
+        ),
+        (
+            Warning::PrecisionExhausted { unsplit: 16 },
+            "Refinement left 16 triangles or segments unsplit: the precision of floating-point numbers is \
+             exhausted near some vertices. The mesh is valid but may have angles below the minimum there.",
+        ),
+        (
+            Warning::SegmentsKeptWhole { unsplit: 10 },
+            "Refinement left 10 bad triangles unsplit: that needs new vertices on segments, which the Y \
+             switch forbids. The mesh is valid but may have angles below the minimum or triangles above the \
+             maximum area.",
+        ),
+    ];
+    for (warning, text) in cases {
+        assert_eq!(warning.to_string(), text);
+    }
+}

@@ -1,0 +1,318 @@
+//! The driver of a refinement: snapping, the runaway limit, the strategy above the guaranteed
+//! angle with its budgets, cancel and progress polling, and the report with its warnings.
+
+use super::attributes::Attributes;
+use super::refinement::{Refinement, RunEnd, Settings};
+use super::report::{Report, Warning};
+use super::{inside, points, tag, Quality, VertexKind, GUARANTEED_ANGLE};
+use crate::algorithms::constrain::Constrainer;
+use crate::algorithms::domain::Domain;
+use crate::data::{Phase, Progress, ProgressFn};
+use crate::geometry::Predicates;
+use crate::mesh::Mesh;
+
+/// Above that angle, refinement first runs straight toward it with a budget of this many new
+/// vertices per triangle of the unrefined mesh (plus what the area bound asks for).
+const STRAIGHT_BUDGET_PER_TRIANGLE: u64 = 64;
+/// If that is not enough, the straight run may go on to this many new vertices per triangle of
+/// the mesh refined to the guaranteed angle.
+const GUARANTEED_MULTIPLE: u64 = 4;
+/// A refinement is stopped as a runaway beyond this many new vertices per triangle of the
+/// unrefined mesh plus what the area bounds ask for (inputs with many tiny angles need about 100),
+/// and not below this many in all (a few seconds of work).
+const RUNAWAY_PER_TRIANGLE: u64 = 1000;
+const RUNAWAY_MINIMUM: u64 = 1_000_000;
+/// Failing that, the mesh refined to the guaranteed angle goes on toward the asked one with a
+/// budget of this many new vertices per triangle it has (plus a few).
+const UNGUARANTEED_BUDGET_PER_TRIANGLE: u64 = 2;
+
+/// Refines the domain of `cdt` (triangles outside it tagged [`OUTSIDE`](crate::mesh::OUTSIDE),
+/// ghosts around it) to `quality`: until no subsegment is encroached (by diametral lenses, or
+/// circles with `conforming`, `D`) and no triangle is bad, or a limit stops it. `attributes`:
+/// `attribute_count` values per vertex, which new vertices get interpolated.
+pub fn refine<P: Predicates>(
+    cdt: &mut Constrainer<P>,
+    domain: &Domain,
+    quality: &Quality<'_>,
+    conforming: bool,
+    attributes: &mut Vec<f64>,
+    attribute_count: usize,
+) -> Report {
+    let mesh = &cdt.inserter.mesh;
+    let (floor2, extent2) = resolution(mesh);
+    // Without the user's own test or budget: a run that makes far more vertices than the input
+    // and the area bounds account for is stopped (an input a hair's breadth wide, such as nearly
+    // collinear points with `c`, needs about length/width triangles: billions).
+    let runaway_limit = (quality.user_test.is_none() && quality.max_steiner.is_none()).then(|| {
+        let expected = RUNAWAY_PER_TRIANGLE * inside_triangle_count(mesh)
+            + size_estimate::<P>(mesh, domain, quality);
+        expected.max(RUNAWAY_MINIMUM)
+    });
+    let kinds = vec![VertexKind::Input; points(mesh).len()];
+    cdt.snap_vertices_onto_segments(floor2);
+    let settings = Settings {
+        domain,
+        quality,
+        conforming,
+        floor2,
+        extent2,
+    };
+    let refinement = Refinement::new(
+        cdt,
+        Attributes::new(attributes, attribute_count),
+        kinds,
+        settings,
+        Polling::new(quality),
+    );
+    let mut driver = Driver {
+        refinement,
+        domain,
+        quality,
+        runaway_limit,
+        warnings: Vec::new(),
+    };
+    let outcome = match quality.min_angle {
+        Some(angle) if angle > GUARANTEED_ANGLE => driver.refine_beyond_the_guarantee(angle),
+        _ => driver.run_within(None),
+    };
+    let tally = driver.refinement.tally();
+    let mut warnings = driver.warnings;
+    if outcome == Outcome::Runaway {
+        warnings.push(Warning::Runaway {
+            steiner_points: tally.steiner_points,
+        });
+    }
+    if tally.skipped > 0 {
+        warnings.push(Warning::PrecisionExhausted {
+            unsplit: tally.skipped,
+        });
+    }
+    if tally.kept_whole > 0 {
+        warnings.push(Warning::SegmentsKeptWhole {
+            unsplit: tally.kept_whole,
+        });
+    }
+    Report {
+        steiner_points: tally.steiner_points,
+        warnings,
+    }
+}
+
+/// How a budgeted refinement run ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Outcome {
+    /// No subsegment is encroached and no triangle is bad.
+    Finished,
+    Cancelled,
+    /// The `S` budget is spent.
+    UserBudget,
+    /// The budget of the run is spent (the strategy above the guaranteed angle decides what
+    /// next).
+    RunBudget,
+    /// The runaway limit is reached.
+    Runaway,
+}
+
+struct Driver<'r, 'q, P: Predicates> {
+    refinement: Refinement<'r, 'q, P>,
+    domain: &'r Domain,
+    quality: &'r Quality<'q>,
+    /// Where any run is stopped as a runaway (see [`refine`]).
+    runaway_limit: Option<u64>,
+    /// The warnings of the runs, in order.
+    warnings: Vec<Warning>,
+}
+
+impl<P: Predicates> Driver<'_, '_, P> {
+    /// Refines until it finishes or has made `limit` Steiner points in all (or fewer under `S`
+    /// or the runaway limit), and says how it ended.
+    fn run_within(&mut self, limit: Option<u64>) -> Outcome {
+        let lower = |a: Option<u64>, b: Option<u64>| match (a, b) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (a, b) => a.or(b),
+        };
+        let (user_limit, runaway_limit) = (self.quality.max_steiner, self.runaway_limit);
+        let steiner_limit = lower(lower(limit, user_limit), runaway_limit);
+        match self.refinement.run(steiner_limit) {
+            RunEnd::Cancelled => {
+                self.warnings.push(Warning::Cancelled);
+                Outcome::Cancelled
+            }
+            RunEnd::Finished => Outcome::Finished,
+            RunEnd::AtLimit if user_limit.is_some() && steiner_limit == user_limit => {
+                Outcome::UserBudget
+            }
+            RunEnd::AtLimit if runaway_limit.is_some() && steiner_limit == runaway_limit => {
+                Outcome::Runaway
+            }
+            RunEnd::AtLimit => Outcome::RunBudget,
+        }
+    }
+
+    /// Refinement toward an angle above 28.6°, where it may never end (it can cascade into ever
+    /// smaller triangles near small input angles). Usually it ends, and refining straight toward
+    /// the angle, as Triangle does, gives the best mesh; so that runs first, with a generous
+    /// budget of new vertices. If the budget runs out, the mesh refined to 28.6° (which always
+    /// ends) tells how big a mesh the input needs, and the straight run may go on to a multiple
+    /// of that. Failing that, the 28.6° mesh is refined toward the angle with a small budget and
+    /// whatever that leaves is repaired at 28.6°: the result meets the guaranteed angle, and a
+    /// warning says that it does not meet the asked one.
+    fn refine_beyond_the_guarantee(&mut self, angle: f64) -> Outcome {
+        let start = self.refinement.snapshot();
+        self.refinement.set_angle(angle);
+        let budget = STRAIGHT_BUDGET_PER_TRIANGLE * self.inside_triangle_count()
+            + self.size_estimate()
+            + 1024;
+        let outcome = self.run_within(Some(self.steiner_points() + budget));
+        if outcome != Outcome::RunBudget {
+            return outcome;
+        }
+        let straight = self.refinement.snapshot();
+        self.refinement.restore(start);
+        self.refinement.set_angle(GUARANTEED_ANGLE);
+        let outcome = self.run_within(None);
+        if outcome != Outcome::Finished {
+            return outcome; // cancelled, or stopped by `S` or as a runaway
+        }
+        let guaranteed_triangles = self.inside_triangle_count();
+        let limit = straight.steiner_points().max(self.steiner_points())
+            + GUARANTEED_MULTIPLE * guaranteed_triangles;
+        if straight.steiner_points() < limit {
+            let guaranteed = self.refinement.snapshot();
+            self.refinement.restore(straight);
+            self.refinement.set_angle(angle);
+            let outcome = self.run_within(Some(limit));
+            if outcome != Outcome::RunBudget {
+                return outcome;
+            }
+            self.refinement.restore(guaranteed);
+        }
+        self.refinement.set_angle(angle);
+        let budget =
+            self.steiner_points() + UNGUARANTEED_BUDGET_PER_TRIANGLE * guaranteed_triangles + 16;
+        let outcome = self.run_within(Some(budget));
+        if outcome != Outcome::RunBudget {
+            return outcome;
+        }
+        self.refinement.set_angle(GUARANTEED_ANGLE);
+        let outcome = self.run_within(None);
+        self.warnings.push(Warning::AngleNotReached {
+            angle,
+            steiner_points: self.steiner_points(),
+        });
+        outcome
+    }
+
+    fn steiner_points(&self) -> u64 {
+        self.refinement.tally().steiner_points
+    }
+
+    fn inside_triangle_count(&self) -> u64 {
+        inside_triangle_count(self.refinement.mesh())
+    }
+
+    fn size_estimate(&self) -> u64 {
+        size_estimate::<P>(self.refinement.mesh(), self.domain, self.quality)
+    }
+}
+
+/// The resolution refinement works at, from the extent of the vertices: the squared floor
+/// below which no edge is made (2⁻⁴⁰ of the extent, far above the resolution of doubles there)
+/// and the squared extent.
+fn resolution(mesh: &Mesh) -> (f64, f64) {
+    let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
+    for p in points(mesh) {
+        for i in 0..2 {
+            lo[i] = lo[i].min(p[i]);
+            hi[i] = hi[i].max(p[i]);
+        }
+    }
+    let extent = (hi[0] - lo[0])
+        .abs()
+        .max((hi[1] - lo[1]).abs())
+        .max(lo[0].abs().max(hi[0].abs()) * 1e-3)
+        .max(f64::MIN_POSITIVE);
+    let floor = extent * 2f64.powi(-40);
+    (floor * floor, extent * extent)
+}
+
+fn inside_triangle_count(mesh: &Mesh) -> u64 {
+    (0..mesh.triangle_count())
+        .filter(|&t| inside(mesh, t))
+        .count() as u64
+}
+
+/// About how many vertices the area bounds (global, regional, per triangle) ask for: four times
+/// the number of triangles of the largest allowed areas that cover the domain.
+fn size_estimate<P: Predicates>(mesh: &Mesh, domain: &Domain, quality: &Quality<'_>) -> u64 {
+    let triangles: f64 = (0..mesh.triangle_count())
+        .filter(|&t| inside(mesh, t))
+        .map(|t| {
+            let [a, b, c] = mesh.triangle(t).map(|v| mesh.point(v));
+            let area = 0.5 * P::orient2d(a, b, c);
+            let regional = if quality.variable_area {
+                domain
+                    .max_area
+                    .get(tag(mesh, t) as usize)
+                    .copied()
+                    .filter(|&m| m > 0.0)
+            } else {
+                None
+            };
+            match (quality.max_area, regional) {
+                (Some(m), Some(r)) => area / m.min(r),
+                (Some(m), None) | (None, Some(m)) => area / m,
+                (None, None) => 0.0,
+            }
+        })
+        .sum();
+    (4.0 * triangles).min(1e12) as u64
+}
+
+/// Cancel and progress polling: the caller's `cancel` every 64 steps (once it says so, for
+/// good), `progress` every 1024.
+pub(super) struct Polling<'q> {
+    cancel: Option<&'q (dyn Fn() -> bool + Sync + 'q)>,
+    progress: Option<&'q ProgressFn<'q>>,
+    polls: u32,
+    cancelled: bool,
+}
+
+impl<'q> Polling<'q> {
+    fn new(quality: &Quality<'q>) -> Self {
+        Polling {
+            cancel: quality.cancel,
+            progress: quality.progress,
+            polls: 0,
+            cancelled: false,
+        }
+    }
+
+    /// Whether the caller has cancelled.
+    pub(super) fn cancelled(&self) -> bool {
+        self.cancelled
+    }
+
+    /// One step of refinement, with `done` Steiner points made and `waiting()` splits queued:
+    /// tells the caller of the progress now and then, asks whether to cancel now and then, and
+    /// returns whether the caller has cancelled.
+    pub(super) fn poll(&mut self, done: u64, waiting: impl FnOnce() -> usize) -> bool {
+        if self.cancelled {
+            return true;
+        }
+        self.polls = self.polls.wrapping_add(1);
+        if self.polls % 1024 == 0 {
+            if let Some(progress) = self.progress {
+                progress(Progress {
+                    phase: Phase::Refinement,
+                    done,
+                    estimate: done + waiting() as u64,
+                });
+            }
+        }
+        if self.polls % 64 == 0 && self.cancel.is_some_and(|cancelled| cancelled()) {
+            self.cancelled = true;
+        }
+        self.cancelled
+    }
+}

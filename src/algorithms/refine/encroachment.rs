@@ -1,0 +1,226 @@
+//! Encroached subsegments (diametral lenses, or circles with `D`): which subsegments a vertex
+//! beside them or a new point encroaches, and where an encroached subsegment is split — its
+//! midpoint, or a concentric shell around an acute input corner (Ruppert 1995 §5, Shewchuk 2002
+//! §4.1).
+
+use super::split_point::min_angle_sin2;
+use super::{edges_around, inside, VertexKind};
+use crate::algorithms::delaunay::Location;
+use crate::geometry::{Point, Predicates};
+use crate::mesh::{triangle_of, Mesh, GHOST, NONE};
+
+/// The encroachment test for an angle bound θ.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Encroachment {
+    /// cos² of the lens angle 180° − 2θ; `None`: diametral circles.
+    lens_cos2: Option<f64>,
+}
+
+impl Encroachment {
+    /// For θ = `degrees`; `conforming` (`D`): diametral circles, so that the result is truly
+    /// Delaunay.
+    pub(super) fn new(degrees: f64, conforming: bool) -> Self {
+        let theta = degrees.clamp(0.0, 60.0).to_radians();
+        // With no angle bound the lens is empty: nothing encroaches, as in Triangle (only a
+        // segment hiding a new point from its triangle is split then).
+        Encroachment {
+            lens_cos2: (theta < std::f64::consts::FRAC_PI_4 && !conforming)
+                .then(|| (2.0 * theta).cos().powi(2)),
+        }
+    }
+
+    /// Whether `w` encroaches the subsegment from `pu` to `pv`: lies in its diametral lens
+    /// (without `D`: the subsegment subtends at least 180° − 2θ at `w`, Shewchuk 2002 §3.2,
+    /// which inserts fewer vertices; with no angle bound, never), else strictly inside its
+    /// diametral circle.
+    pub(super) fn encroaches(&self, pu: Point, pv: Point, w: Point) -> bool {
+        let (a, b) = ([pu[0] - w[0], pu[1] - w[1]], [pv[0] - w[0], pv[1] - w[1]]);
+        let dot = a[0] * b[0] + a[1] * b[1];
+        match self.lens_cos2 {
+            Some(cos2) => {
+                dot < 0.0
+                    && dot * dot >= cos2 * (a[0] * a[0] + a[1] * a[1]) * (b[0] * b[0] + b[1] * b[1])
+            }
+            None => dot < 0.0,
+        }
+    }
+
+    /// Whether an apex beside the subsegment of half-edge `e`, in the domain, encroaches it (in
+    /// a constrained Delaunay triangulation, no other vertex can if these do not).
+    pub(super) fn apex_encroaches(&self, mesh: &Mesh, e: u32) -> bool {
+        let (pu, pv) = (mesh.point(mesh.origin(e)), mesh.point(mesh.dest(e)));
+        [e, mesh.twin(e)].iter().any(|&h| {
+            let w = mesh.apex(h);
+            w != GHOST && inside(mesh, triangle_of(h)) && self.encroaches(pu, pv, mesh.point(w))
+        })
+    }
+}
+
+/// The Bowyer–Watson cavity of a new point, found to tell which subsegments the point would
+/// encroach (its buffers are reused from point to point).
+#[derive(Default)]
+pub(super) struct Cavity {
+    /// The triangles whose circumcircles contain the point.
+    triangles: Vec<u32>,
+    stack: Vec<u32>,
+}
+
+impl Cavity {
+    /// The subsegments (`(origin, dest, half-edge)`) that `x` would encroach if inserted at
+    /// `location`: those bounding the triangles whose circumcircles contain `x` (the cavity, which
+    /// does not cross segments), with `x` inside their diametral lenses or circles.
+    pub(super) fn encroached_by<P: Predicates>(
+        &mut self,
+        mesh: &Mesh,
+        encroachment: &Encroachment,
+        x: Point,
+        location: Location,
+    ) -> Vec<(u32, u32, u32)> {
+        let (stack, seen) = (&mut self.stack, &mut self.triangles);
+        stack.clear();
+        seen.clear();
+        match location {
+            Location::InTriangle(t) | Location::Outside(t) => stack.push(t),
+            Location::OnEdge(e) => {
+                stack.extend_from_slice(&[triangle_of(e), triangle_of(mesh.twin(e))])
+            }
+            Location::OnVertex(_) => {}
+        }
+        seen.extend_from_slice(stack);
+        let mut found = Vec::new();
+        while let Some(t) = stack.pop() {
+            for e in 3 * t..3 * t + 3 {
+                if mesh.is_segment(e) {
+                    let (u, v) = (mesh.origin(e), mesh.dest(e));
+                    if encroachment.encroaches(mesh.point(u), mesh.point(v), x)
+                        && !found
+                            .iter()
+                            .any(|&(a, b, _)| (a, b) == (u, v) || (a, b) == (v, u))
+                    {
+                        found.push((u, v, e));
+                    }
+                    continue;
+                }
+                let n = triangle_of(mesh.twin(e));
+                if seen.contains(&n) || !inside(mesh, n) || mesh.is_ghost(n) {
+                    continue;
+                }
+                let [a, b, c] = mesh.triangle(n).map(|v| mesh.point(v));
+                if P::incircle(a, b, c, x) > 0.0 {
+                    seen.push(n);
+                    stack.push(n);
+                }
+            }
+        }
+        found
+    }
+
+    /// The quality ([`min_angle_sin2`]) of the worst triangle that inserting `x` makes: `x`
+    /// joined to the edges around the cavity that [`Self::encroached_by`] last found for it.
+    pub(super) fn worst_triangle_made(&self, mesh: &Mesh, x: Point) -> f64 {
+        let mut worst = f64::INFINITY;
+        for &t in &self.triangles {
+            for e in 3 * t..3 * t + 3 {
+                if !mesh.is_segment(e) && self.triangles.contains(&triangle_of(mesh.twin(e))) {
+                    continue;
+                }
+                worst = worst.min(min_angle_sin2([
+                    mesh.point(mesh.origin(e)),
+                    mesh.point(mesh.dest(e)),
+                    x,
+                ]));
+            }
+        }
+        worst
+    }
+}
+
+/// Where to split subsegment `u`–`v` (parameter from `u`): at a power-of-two distance from an
+/// end that is an input vertex where segments meet at an acute angle ("concentric shells",
+/// Ruppert 1995 §5, Shewchuk 2002 §4.1), from the sharper one if both are; else the midpoint.
+/// The powers of two are absolute (2^k, k any integer), the same on every segment around a
+/// corner, so that splits on two segments meet on common shells. Returns the parameter and the
+/// kind of the new vertex (the corner and the exponent of its distance).
+pub(super) fn split_parameter(
+    mesh: &Mesh,
+    kinds: &[VertexKind],
+    u: u32,
+    v: u32,
+) -> (f64, VertexKind) {
+    let (cu, cv) = (
+        sharpest_corner(mesh, kinds, u),
+        sharpest_corner(mesh, kinds, v),
+    );
+    let midpoint = VertexKind::OnSegment {
+        corner: NONE,
+        shell: 0,
+    };
+    if cu.is_none() && cv.is_none() {
+        return (0.5, midpoint);
+    }
+    let from_u = match (cu, cv) {
+        (Some(a), Some(b)) => a >= b,
+        (Some(_), None) => true,
+        _ => false,
+    };
+    let (pu, pv) = (mesh.point(u), mesh.point(v));
+    let length = ((pv[0] - pu[0]).powi(2) + (pv[1] - pu[1]).powi(2)).sqrt();
+    // The power of two 2^k in [length/3, 2·length/3] (there is one: the interval spans a factor
+    // of two), the nearest to the midpoint.
+    let mut k = (length * 0.5).log2().round() as i32;
+    while 2f64.powi(k) > length * (2.0 / 3.0) {
+        k -= 1;
+    }
+    while 2f64.powi(k) < length / 3.0 {
+        k += 1;
+    }
+    let d = 2f64.powi(k);
+    if !(d.is_finite() && d > 0.0) {
+        return (0.5, midpoint);
+    }
+    let (t, corner) = if from_u {
+        (d / length, u)
+    } else {
+        (1.0 - d / length, v)
+    };
+    (t, VertexKind::OnSegment { corner, shell: k })
+}
+
+/// For an input vertex `x` where two segments meet at less than 90°: the cosine of the smallest
+/// such angle (larger is sharper). `None` for vertices inserted by refinement and for vertices
+/// whose segments meet at right or obtuse angles only. The smallest angle is between two
+/// segments consecutive around `x`, so one turn around it suffices.
+fn sharpest_corner(mesh: &Mesh, kinds: &[VertexKind], x: u32) -> Option<f64> {
+    if matches!(kinds[x as usize], VertexKind::OnSegment { .. }) {
+        return None;
+    }
+    let o = mesh.point(x);
+    let direction = |e: u32| {
+        let p = mesh.point(mesh.dest(e));
+        let d = [p[0] - o[0], p[1] - o[1]];
+        let length = (d[0] * d[0] + d[1] * d[1]).sqrt();
+        [d[0] / length, d[1] / length]
+    };
+    let (mut first, mut previous): (Option<Point>, Option<Point>) = (None, None);
+    let mut sharpest: Option<f64> = None;
+    let mut consider = |a: Point, b: Point| {
+        let cos = a[0] * b[0] + a[1] * b[1];
+        if cos > 0.0 && sharpest.is_none_or(|s| cos > s) {
+            sharpest = Some(cos);
+        }
+    };
+    for e in edges_around(mesh, x).filter(|&e| mesh.is_segment(e)) {
+        let d = direction(e);
+        match previous {
+            Some(p) => consider(p, d),
+            None => first = Some(d),
+        }
+        previous = Some(d);
+    }
+    if let (Some(a), Some(b)) = (first, previous) {
+        if a != b {
+            consider(b, a);
+        }
+    }
+    sharpest
+}

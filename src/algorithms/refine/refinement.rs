@@ -1,0 +1,463 @@
+//! The refinement loop: encroached subsegments are split first, then bad triangles, worst first,
+//! until none is left or a limit stops it; a split point that would encroach a subsegment is
+//! rejected and the subsegment split instead (Ruppert's rule). It owns what a refinement
+//! changes — the constrained triangulation (borrowed), the vertices' kinds and attributes, the
+//! counts of what it made and left — and the queues.
+
+use std::collections::{HashSet, VecDeque};
+
+use super::attributes::Attributes;
+use super::driver::Polling;
+use super::encroachment::{split_parameter, Cavity, Encroachment};
+use super::queue::{BadQueue, BadTriangle};
+use super::split_point::{min_angle_sin2, AngleBound};
+use super::walk::{walk, Walk};
+use super::{edges_around, inside, tag, Quality, VertexKind};
+use crate::algorithms::constrain::Constrainer;
+use crate::algorithms::delaunay::Location;
+use crate::algorithms::domain::Domain;
+use crate::geometry::{Point, Predicates};
+use crate::mesh::{next, triangle_of, Mesh, GHOST};
+
+/// What a refinement works toward, and at what resolution: fixed for all its runs.
+pub(super) struct Settings<'r, 'q> {
+    pub(super) domain: &'r Domain,
+    pub(super) quality: &'r Quality<'q>,
+    /// `D`: encroachment by diametral circles, so that the result is truly Delaunay.
+    pub(super) conforming: bool,
+    /// No edge is made shorter than this (squared): far above the resolution of doubles here.
+    pub(super) floor2: f64,
+    /// The domain's extent, squared (the scale of the bad-triangle queue).
+    pub(super) extent2: f64,
+}
+
+/// How a run of [`Refinement::run`] ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum RunEnd {
+    /// No subsegment is encroached and no triangle is bad.
+    Finished,
+    /// The caller cancelled.
+    Cancelled,
+    /// The run's limit of Steiner points is reached.
+    AtLimit,
+}
+
+/// What refinement made and left, for its report.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct Tally {
+    pub(super) steiner_points: u64,
+    /// Bad triangles and segments left alone because splitting them would make too short an edge.
+    pub(super) skipped: u64,
+    /// Bad triangles left alone because splitting them needs a vertex on a segment that `Y`/`YY`
+    /// keep whole.
+    pub(super) kept_whole: u64,
+}
+
+/// A refinement's state kept aside, to be exchanged with the live one
+/// ([`Refinement::exchange`]).
+pub(super) struct Aside<P: Predicates> {
+    cdt: Constrainer<P>,
+    attributes: Vec<f64>,
+    kinds: Vec<VertexKind>,
+    tally: Tally,
+    unsplittable: HashSet<(u32, u32)>,
+}
+
+impl<P: Predicates> Aside<P> {
+    pub(super) fn steiner_points(&self) -> u64 {
+        self.tally.steiner_points
+    }
+}
+
+/// A Delaunay refinement of a constrained triangulation's domain.
+pub(super) struct Refinement<'r, 'q, P: Predicates> {
+    cdt: &'r mut Constrainer<P>,
+    attributes: Attributes<'r>,
+    /// Per vertex.
+    kinds: Vec<VertexKind>,
+    settings: Settings<'r, 'q>,
+    polling: Polling<'q>,
+    angle: AngleBound,
+    encroachment: Encroachment,
+    /// Subsegments to split: ends, and whether a rejected point encroached it (split regardless).
+    encroached: VecDeque<(u32, u32, bool)>,
+    bad: BadQueue,
+    cavity: Cavity,
+    /// Subsegments (ends, smaller first) found unsplittable: never tried again.
+    unsplittable: HashSet<(u32, u32)>,
+    tally: Tally,
+    /// Where the current run stops.
+    limit: Option<u64>,
+    /// Scratch space: the half-edges around a new vertex.
+    around: Vec<u32>,
+}
+
+impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
+    /// A refinement of `cdt`'s domain (its triangles outside the domain are tagged [`OUTSIDE`]
+    /// (crate::mesh::OUTSIDE)) toward the quality's angle; `kinds` and `attributes` per vertex.
+    pub(super) fn new(
+        cdt: &'r mut Constrainer<P>,
+        attributes: Attributes<'r>,
+        kinds: Vec<VertexKind>,
+        settings: Settings<'r, 'q>,
+        polling: Polling<'q>,
+    ) -> Self {
+        let degrees = settings.quality.min_angle.unwrap_or(0.0);
+        Refinement {
+            cdt,
+            attributes,
+            kinds,
+            angle: AngleBound::new(degrees),
+            encroachment: Encroachment::new(degrees, settings.conforming),
+            settings,
+            polling,
+            encroached: VecDeque::new(),
+            bad: BadQueue::new(),
+            cavity: Cavity::default(),
+            unsplittable: HashSet::new(),
+            tally: Tally::default(),
+            limit: None,
+            around: Vec::new(),
+        }
+    }
+
+    pub(super) fn mesh(&self) -> &Mesh {
+        &self.cdt.inserter.mesh
+    }
+
+    pub(super) fn tally(&self) -> Tally {
+        self.tally
+    }
+
+    /// Sets the angle bound θ (degrees): the bad-angle test, the lens and the off-centre.
+    pub(super) fn set_angle(&mut self, degrees: f64) {
+        self.angle = AngleBound::new(degrees);
+        self.encroachment = Encroachment::new(degrees, self.settings.conforming);
+    }
+
+    /// A copy of the state, to [`Self::exchange`] with later.
+    pub(super) fn copy_aside(&self) -> Aside<P> {
+        Aside {
+            cdt: self.cdt.clone(),
+            attributes: self.attributes.to_vec(),
+            kinds: self.kinds.clone(),
+            tally: self.tally,
+            unsplittable: self.unsplittable.clone(),
+        }
+    }
+
+    pub(super) fn snapshot(&self) -> Aside<P> {
+        self.copy_aside()
+    }
+
+    pub(super) fn restore(&mut self, mut aside: Aside<P>) {
+        self.exchange(&mut aside);
+    }
+
+    /// Exchanges the state with the one `aside` holds (moves, no copy), and empties the queues:
+    /// the next run finds what is left to do from the mesh.
+    pub(super) fn exchange(&mut self, aside: &mut Aside<P>) {
+        std::mem::swap(self.cdt, &mut aside.cdt);
+        self.attributes.swap(&mut aside.attributes);
+        std::mem::swap(&mut self.kinds, &mut aside.kinds);
+        std::mem::swap(&mut self.tally, &mut aside.tally);
+        std::mem::swap(&mut self.unsplittable, &mut aside.unsplittable);
+        self.encroached.clear();
+        self.bad.clear();
+    }
+
+    /// Refines until no subsegment is encroached and no triangle is bad, or `limit` Steiner
+    /// points are made in all, or the caller cancels.
+    pub(super) fn run(&mut self, limit: Option<u64>) -> RunEnd {
+        self.limit = limit;
+        self.refine_all();
+        if self.polling.cancelled() {
+            RunEnd::Cancelled
+        } else if self.bad.is_empty() && self.encroached.is_empty() {
+            RunEnd::Finished
+        } else {
+            RunEnd::AtLimit
+        }
+    }
+
+    /// Splits encroached subsegments, then bad triangles, until none is left or a limit stops.
+    fn refine_all(&mut self) {
+        let mesh = self.mesh();
+        let segments: Vec<u32> = (0..3 * mesh.triangle_count())
+            .filter(|&e| mesh.is_segment(e) && e < mesh.twin(e))
+            .collect();
+        for e in segments {
+            self.check_segment(e);
+        }
+        self.split_encroached();
+        self.bad.clear();
+        for t in 0..self.mesh().triangle_count() {
+            if inside(self.mesh(), t) {
+                self.check_triangle(t);
+            }
+        }
+        while !self.should_stop() {
+            let Some(bad) = self.bad.pop() else { break };
+            let [a, b, c] = bad.corners;
+            let Some(e) = self.mesh().find_edge(a, b) else {
+                continue;
+            };
+            if self.mesh().apex(e) != c {
+                continue; // gone since it was queued
+            }
+            self.split_triangle(triangle_of(e), bad);
+            self.split_encroached();
+        }
+    }
+
+    /// Whether to stop: the caller cancelled (polled now and then), or the limit is reached.
+    fn should_stop(&mut self) -> bool {
+        let done = self.tally.steiner_points;
+        let (bad, encroached) = (&self.bad, &self.encroached);
+        if self.polling.poll(done, || bad.len() + encroached.len()) {
+            return true;
+        }
+        self.limit.is_some_and(|limit| done >= limit)
+    }
+
+    /// Whether the segment of half-edge `e` may receive Steiner points (`Y`, `YY`).
+    fn may_split(&self, e: u32) -> bool {
+        let mesh = self.mesh();
+        match self.settings.quality.no_steiner_on_segments {
+            0 => true,
+            1 => inside(mesh, triangle_of(e)) && inside(mesh, triangle_of(mesh.twin(e))),
+            _ => false,
+        }
+    }
+
+    fn is_unsplittable(&self, u: u32, v: u32) -> bool {
+        self.unsplittable.contains(&(u.min(v), u.max(v)))
+    }
+
+    /// Queues the subsegment of half-edge `e` if an apex beside it encroaches it.
+    fn check_segment(&mut self, e: u32) {
+        let mesh = self.mesh();
+        let (u, v) = (mesh.origin(e), mesh.dest(e));
+        if self.encroachment.apex_encroaches(mesh, e)
+            && self.may_split(e)
+            && !self.is_unsplittable(u, v)
+        {
+            self.encroached.push_back((u, v, false));
+        }
+    }
+
+    /// Splits the queued subsegments that are still encroached (or were queued `forced`);
+    /// returns how many it split.
+    fn split_encroached(&mut self) -> usize {
+        let mut splits = 0;
+        while let Some((u, v, forced)) = self.encroached.pop_front() {
+            if self.should_stop() {
+                self.encroached.push_front((u, v, forced));
+                break;
+            }
+            let mesh = self.mesh();
+            let Some(e) = mesh.find_edge(u, v).filter(|&e| mesh.is_segment(e)) else {
+                continue;
+            };
+            let still = self.encroachment.apex_encroaches(mesh, e);
+            if (forced || still) && self.split_segment(e) {
+                splits += 1;
+            }
+        }
+        splits
+    }
+
+    /// Splits the subsegment of half-edge `e`; returns whether it did. It does not when the
+    /// pieces would be shorter than the floor, or when the rounded split point would fall on or
+    /// beyond the line from an end to a vertex beside the subsegment (a vertex within rounding
+    /// distance of it): the triangles made would be inverted. Such a subsegment is never tried
+    /// again.
+    fn split_segment(&mut self, e: u32) -> bool {
+        let mesh = self.mesh();
+        let (u, v) = (mesh.origin(e), mesh.dest(e));
+        let (t, kind) = split_parameter(mesh, &self.kinds, u, v);
+        let (pu, pv) = (mesh.point(u), mesh.point(v));
+        let p = [pu[0] + t * (pv[0] - pu[0]), pu[1] + t * (pv[1] - pu[1])];
+        let floor2 = self.settings.floor2;
+        let too_short = |q: Point, r: Point| (q[0] - r[0]).powi(2) + (q[1] - r[1]).powi(2) < floor2;
+        let splits_cleanly = [e, mesh.twin(e)].iter().all(|&h| {
+            let w = mesh.apex(h);
+            let (a, b) = (mesh.point(mesh.origin(h)), mesh.point(mesh.dest(h)));
+            w == GHOST
+                || (P::orient2d(a, p, mesh.point(w)) > 0.0
+                    && P::orient2d(p, b, mesh.point(w)) > 0.0)
+        });
+        if too_short(p, pu) || too_short(p, pv) || !splits_cleanly {
+            self.unsplittable.insert((u.min(v), u.max(v)));
+            self.tally.skipped += 1;
+            return false;
+        }
+        let vertex = self.new_vertex(p, kind);
+        self.attributes.push_on_segment(u, v, t);
+        let _ = self.cdt.inserter.insert_at(vertex, Location::OnEdge(e));
+        self.cdt.settle(vertex);
+        self.after_insertion(vertex);
+        true
+    }
+
+    /// Queues triangle `t` if it is bad: skinny, too big, or so by the user's test.
+    fn check_triangle(&mut self, t: u32) {
+        let mesh = self.mesh();
+        let corners = mesh.triangle(t);
+        let [pa, pb, pc] = corners.map(|v| mesh.point(v));
+        let area = 0.5 * P::orient2d(pa, pb, pc);
+        let skinny = self
+            .angle
+            .skinny(mesh, &self.kinds, &self.cdt.ends, corners, [pa, pb, pc]);
+        let quality = self.settings.quality;
+        let bad = skinny.is_some() || {
+            let regional = if quality.variable_area {
+                self.settings
+                    .domain
+                    .max_area
+                    .get(tag(mesh, t) as usize)
+                    .copied()
+                    .unwrap_or(-1.0)
+            } else {
+                -1.0
+            };
+            let too_big =
+                quality.max_area.is_some_and(|m| area > m) || (regional > 0.0 && area > regional);
+            too_big
+                || quality
+                    .user_test
+                    .is_some_and(|f| f(pa[0], pa[1], pb[0], pb[1], pc[0], pc[1], area))
+        };
+        if bad {
+            let bucket = match skinny {
+                Some(shortest) => BadQueue::skinny_bucket(shortest / self.settings.extent2),
+                None => BadQueue::SIZE_BUCKET,
+            };
+            self.bad.push(BadTriangle { bucket, corners });
+        }
+    }
+
+    /// Splits bad triangle `t` at its split point, or — when a segment hides the point or the
+    /// point would encroach subsegments — splits those instead (Ruppert's rule).
+    fn split_triangle(&mut self, t: u32, bad: BadTriangle) {
+        let corners = self.mesh().triangle(t);
+        let points = corners.map(|v| self.mesh().point(v));
+        let (x, xi, eta) = self.angle.split_point(points);
+        if !(x[0].is_finite() && x[1].is_finite()) {
+            return;
+        }
+        match walk::<P>(self.mesh(), t, x) {
+            Walk::Lost => self.tally.skipped += 1,
+            Walk::Blocked(s) => {
+                // A segment hides the new point from the triangle: the point may not be
+                // inserted, and the segment is split instead (Ruppert's rule; with lenses the
+                // point need not lie in its diametral circle).
+                let mesh = self.mesh();
+                let segment = (mesh.origin(s), mesh.dest(s), s);
+                self.split_instead(&[segment], bad);
+            }
+            Walk::Found(location) => {
+                if let Location::OnVertex(_) = location {
+                    self.tally.skipped += 1; // precision exhausted here
+                    return;
+                }
+                let mut encroached = self.cavity.encroached_by::<P>(
+                    &self.cdt.inserter.mesh,
+                    &self.encroachment,
+                    x,
+                    location,
+                );
+                // Subsegments that `Y`/`YY` keep whole cannot be protected by splitting them:
+                // the point goes in all the same if it makes no triangle worse than the bad one
+                // (else the triangles along such a boundary could never improve), and the mesh
+                // stays constrained Delaunay.
+                let kept_whole = encroached.iter().any(|&(_, _, e)| !self.may_split(e));
+                encroached.retain(|&(_, _, e)| self.may_split(e));
+                if !encroached.is_empty() {
+                    self.split_instead(&encroached, bad);
+                    return;
+                }
+                if kept_whole
+                    && self.cavity.worst_triangle_made(self.mesh(), x) < min_angle_sin2(points)
+                {
+                    self.tally.kept_whole += 1;
+                    return;
+                }
+                if self.too_close(x, location) {
+                    self.tally.skipped += 1;
+                    return;
+                }
+                let vertex = self.new_vertex(x, VertexKind::Free);
+                self.attributes.push_in_triangle(corners, xi, eta);
+                let _ = self.cdt.inserter.insert_at(vertex, location);
+                self.after_insertion(vertex);
+            }
+        }
+    }
+
+    /// Splits the given subsegments (`(origin, dest, half-edge)`) instead of a bad triangle whose
+    /// split point encroaches on them, and queues the triangle again to be reconsidered. Only if
+    /// some subsegment was split: otherwise the triangle is left as it is, so that every time a
+    /// triangle is queued again refinement has made progress.
+    fn split_instead(&mut self, subsegments: &[(u32, u32, u32)], bad: BadTriangle) {
+        for &(u, v, e) in subsegments {
+            if self.may_split(e) && !self.is_unsplittable(u, v) {
+                self.encroached.push_back((u, v, true));
+            }
+        }
+        if self.split_encroached() > 0 {
+            self.bad.push(bad);
+        } else if subsegments.iter().all(|&(_, _, e)| !self.may_split(e)) {
+            self.tally.kept_whole += 1;
+        } else {
+            self.tally.skipped += 1;
+        }
+    }
+
+    /// Whether `x`, at `location`, would make an edge shorter than the floor.
+    fn too_close(&self, x: Point, location: Location) -> bool {
+        let mesh = self.mesh();
+        let triangles = match location {
+            Location::InTriangle(t) | Location::Outside(t) => [t, t],
+            Location::OnEdge(e) => [triangle_of(e), triangle_of(mesh.twin(e))],
+            Location::OnVertex(_) => return true,
+        };
+        triangles
+            .iter()
+            .flat_map(|&t| mesh.triangle(t))
+            .filter(|&v| v != GHOST)
+            .any(|v| {
+                let p = mesh.point(v);
+                (p[0] - x[0]).powi(2) + (p[1] - x[1]).powi(2) < self.settings.floor2
+            })
+    }
+
+    /// Adds vertex `p` of kind `kind` (its attributes are the caller's to add).
+    fn new_vertex(&mut self, p: Point, kind: VertexKind) -> u32 {
+        let vertex = self.cdt.inserter.mesh.add_point(p);
+        self.kinds.push(kind);
+        self.tally.steiner_points += 1;
+        vertex
+    }
+
+    /// Queues what a new vertex may have spoiled: bad triangles around it, encroached segments.
+    fn after_insertion(&mut self, vertex: u32) {
+        let mut around = std::mem::take(&mut self.around);
+        around.clear();
+        around.extend(edges_around(self.mesh(), vertex));
+        for &e in &around {
+            let t = triangle_of(e);
+            let opposite = next(e);
+            if self.mesh().is_segment(opposite) {
+                self.check_segment(opposite);
+            }
+            if self.mesh().is_segment(e) {
+                self.check_segment(e);
+            }
+            if inside(self.mesh(), t) {
+                self.check_triangle(t);
+            }
+        }
+        self.around = around;
+    }
+}

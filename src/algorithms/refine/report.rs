@@ -1,0 +1,83 @@
+//! What a refinement reports: the Steiner points it made and typed warnings, whose text (their
+//! `Display`) is what the library, the C ABI and the command line print.
+
+use std::fmt;
+
+use super::GUARANTEED_ANGLE;
+
+/// The outcome of a refinement.
+#[derive(Debug, Default)]
+pub struct Report {
+    /// New vertices made by refinement.
+    pub steiner_points: u64,
+    /// What the caller should know about the mesh, in the order it happened.
+    pub warnings: Vec<Warning>,
+}
+
+/// Why a refined mesh may fall short of what was asked. Every mesh is valid all the same.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Warning {
+    /// The caller cancelled refinement.
+    Cancelled,
+    /// The asked minimum angle (above [`GUARANTEED_ANGLE`]) needed more Steiner points than the
+    /// budgets beyond the guarantee allow: the mesh meets the guaranteed angle only.
+    AngleNotReached {
+        /// The asked minimum angle, in degrees.
+        angle: f64,
+        /// The Steiner points made in all.
+        steiner_points: u64,
+    },
+    /// Refinement made far more vertices than the input and its area bounds account for and was
+    /// stopped.
+    Runaway {
+        /// The Steiner points made in all.
+        steiner_points: u64,
+    },
+    /// Triangles or segments left unsplit where the precision of floating-point numbers is
+    /// exhausted.
+    PrecisionExhausted {
+        /// How many.
+        unsplit: u64,
+    },
+    /// Bad triangles left unsplit because that needs vertices on segments that `Y` keeps whole.
+    SegmentsKeptWhole {
+        /// How many.
+        unsplit: u64,
+    },
+}
+
+impl fmt::Display for Warning {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Warning::Cancelled => {
+                write!(f, "Refinement was cancelled; the mesh is valid but not refined.")
+            }
+            Warning::AngleNotReached {
+                angle,
+                steiner_points,
+            } => write!(
+                f,
+                "A minimum angle of {angle}° is above {GUARANTEED_ANGLE}°, the largest for which Delaunay \
+                 refinement is guaranteed to terminate, and this input needs more: refinement stopped after \
+                 {steiner_points} Steiner points with some angles below {angle}° but none below {GUARANTEED_ANGLE}° (the mesh \
+                 is valid)."
+            ),
+            Warning::Runaway { steiner_points } => write!(
+                f,
+                "Refinement stopped after {steiner_points} Steiner points, far more than this input and its area bounds \
+                 account for: some of its features are too thin for the minimum angle (the mesh is valid; \
+                 the S switch sets a limit of your own)."
+            ),
+            Warning::PrecisionExhausted { unsplit } => write!(
+                f,
+                "Refinement left {unsplit} triangles or segments unsplit: the precision of floating-point numbers is \
+                 exhausted near some vertices. The mesh is valid but may have angles below the minimum there."
+            ),
+            Warning::SegmentsKeptWhole { unsplit } => write!(
+                f,
+                "Refinement left {unsplit} bad triangles unsplit: that needs new vertices on segments, which the Y switch \
+                 forbids. The mesh is valid but may have angles below the minimum or triangles above the maximum area."
+            ),
+        }
+    }
+}
