@@ -157,8 +157,21 @@ impl<P: Predicates> Driver<'_, '_, P> {
     /// of that. Failing that, the 28.6° mesh is refined toward the angle with a small budget and
     /// whatever that leaves is repaired at 28.6°: the result meets the guaranteed angle, and a
     /// warning says that it does not meet the asked one.
+    ///
+    /// Coming back to an earlier state: one copy is made, of the unrefined state before the
+    /// straight run (the input's size: when the straight budget runs out, under a hundredth of
+    /// the straight mesh). From then on the two states in play, the straight mesh and the 28.6°
+    /// one, are exchanged by moves ([`Refinement::exchange`]), never copied: at most two refined
+    /// meshes live at once (copying snapshots held three while copying the 28.6° mesh aside),
+    /// and no time goes into copying them. The alternatives cost more: replaying the
+    /// deterministic straight run from the unrefined state instead of keeping its result
+    /// doubles its time whenever the fallback is needed; an undo journal would have to log
+    /// every operation of the mesh, the Delaunay inserter and constrain, and grows with the
+    /// straight run all the same. An exchange empties the queues as restoring a snapshot did and
+    /// the runs come in the same order, so the meshes (and the polls of `cancel` and
+    /// `progress`) are those of copying snapshots.
     fn refine_beyond_the_guarantee(&mut self, angle: f64) -> Outcome {
-        let start = self.refinement.snapshot();
+        let mut aside = self.refinement.copy_aside(); // the unrefined state
         self.refinement.set_angle(angle);
         let budget = STRAIGHT_BUDGET_PER_TRIANGLE * self.inside_triangle_count()
             + self.size_estimate()
@@ -167,26 +180,28 @@ impl<P: Predicates> Driver<'_, '_, P> {
         if outcome != Outcome::RunBudget {
             return outcome;
         }
-        let straight = self.refinement.snapshot();
-        self.refinement.restore(start);
+        // Live: the unrefined state, refined to 28.6°; aside: the straight run's.
+        self.refinement.exchange(&mut aside);
         self.refinement.set_angle(GUARANTEED_ANGLE);
         let outcome = self.run_within(None);
         if outcome != Outcome::Finished {
             return outcome; // cancelled, or stopped by `S` or as a runaway
         }
         let guaranteed_triangles = self.inside_triangle_count();
-        let limit = straight.steiner_points().max(self.steiner_points())
+        let limit = aside.steiner_points().max(self.steiner_points())
             + GUARANTEED_MULTIPLE * guaranteed_triangles;
-        if straight.steiner_points() < limit {
-            let guaranteed = self.refinement.snapshot();
-            self.refinement.restore(straight);
+        if aside.steiner_points() < limit {
+            // Live: the straight run's state, going on; aside: the 28.6° mesh.
+            self.refinement.exchange(&mut aside);
             self.refinement.set_angle(angle);
             let outcome = self.run_within(Some(limit));
             if outcome != Outcome::RunBudget {
                 return outcome;
             }
-            self.refinement.restore(guaranteed);
+            self.refinement.exchange(&mut aside);
         }
+        drop(aside); // the straight run's state is no longer needed
+                     // Live: the 28.6° mesh, refined toward the angle with a small budget.
         self.refinement.set_angle(angle);
         let budget =
             self.steiner_points() + UNGUARANTEED_BUDGET_PER_TRIANGLE * guaranteed_triangles + 16;

@@ -146,14 +146,6 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
         }
     }
 
-    pub(super) fn snapshot(&self) -> Aside<P> {
-        self.copy_aside()
-    }
-
-    pub(super) fn restore(&mut self, mut aside: Aside<P>) {
-        self.exchange(&mut aside);
-    }
-
     /// Exchanges the state with the one `aside` holds (moves, no copy), and empties the queues:
     /// the next run finds what is left to do from the mesh.
     pub(super) fn exchange(&mut self, aside: &mut Aside<P>) {
