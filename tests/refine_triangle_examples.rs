@@ -13,9 +13,9 @@
 //!   edge joins two vertices on two different input segments (or hull edges with `c` and for
 //!   point sets, or
 //!   boundary edges of the mesh with `r`) that share a vertex, at distances from it equal within
-//!   1% (the rule of `AngleBound::is_excused_by_small_input_angle` in `refine::split_point`). With `Y`, where boundary
-//!   segments cannot be split, our smallest unexcused angle is at least half of θ and of
-//!   Triangle's;
+//!   1% (the rule of `AngleBound::is_excused_by_small_input_angle` in `refine::split_point`).
+//!   With `Y`, where boundary segments cannot be split, our smallest unexcused angle is at least
+//!   half of θ and of Triangle's;
 //! - every triangle within its area bound (global `a<x>`, regional `a` by flooding from the
 //!   region points across non-segment edges, per triangle of the previous mesh with `rpqa`);
 //! - our triangles cover the same area as Triangle's, and number between 0.5× and 2× Triangle's.
