@@ -27,7 +27,8 @@ use crate::algorithms::delaunay::Location;
 use crate::algorithms::domain::Domain;
 use crate::data::{Phase, Progress, ProgressFn, UnsuitableFn};
 use crate::geometry::{circumcenter, Point, Predicates};
-use crate::mesh::{next, prev, triangle_of, GHOST, NONE, OUTSIDE};
+use crate::mesh::raw::{next, prev, triangle_of, GHOST, NONE};
+use crate::mesh::{EdgeId, TriangleId, VertexId, OUTSIDE};
 
 // The parts: this file is the driver (strategy above the guaranteed angle, budgets, the runaway
 // limit, cancel and progress, snapping, the refinement loop, insertion bookkeeping).
@@ -186,7 +187,7 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         attribute_count: usize,
     ) -> Self {
         let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
-        for p in &cdt.inserter.mesh.points {
+        for p in cdt.mesh().points() {
             for i in 0..2 {
                 lo[i] = lo[i].min(p[i]);
                 hi[i] = hi[i].max(p[i]);
@@ -230,11 +231,11 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
     }
 
     fn pt(&self, v: u32) -> Point {
-        self.cdt.inserter.mesh.point(v)
+        self.cdt.mesh().raw().point(v)
     }
 
     fn inside(&self, t: u32) -> bool {
-        self.cdt.inserter.mesh.tag[t as usize] != OUTSIDE
+        self.cdt.mesh().raw().tag(t) != OUTSIDE
     }
 
     /// Refines until no subsegment is encroached and no triangle is bad (or a limit stops it).
@@ -382,7 +383,7 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
     }
 
     fn inside_triangle_count(&self) -> u64 {
-        (0..self.cdt.inserter.mesh.triangle_count())
+        (0..self.cdt.mesh().raw().triangle_count())
             .filter(|&t| self.inside(t))
             .count() as u64
     }
@@ -390,7 +391,7 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
     /// About how many vertices the area bounds (global, regional, per triangle) ask for: four
     /// times the number of triangles of the largest allowed areas that cover the domain.
     fn size_estimate(&self) -> u64 {
-        let mesh = &self.cdt.inserter.mesh;
+        let mesh = self.cdt.mesh().raw();
         let triangles: f64 = (0..mesh.triangle_count())
             .filter(|&t| self.inside(t))
             .map(|t| {
@@ -399,7 +400,7 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
                 let regional = if self.quality.variable_area {
                     self.domain
                         .max_area
-                        .get(mesh.tag[t as usize] as usize)
+                        .get(mesh.tag(t) as usize)
                         .copied()
                         .filter(|&m| m > 0.0)
                 } else {
@@ -451,19 +452,23 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
                 && !near(pu)
                 && !near(pv)
         };
-        let mesh = &self.cdt.inserter.mesh;
+        let mesh = self.cdt.mesh().raw();
         // One half-edge per subsegment: the flip looks at the vertices on both sides.
-        let mut work: Vec<u32> = (0..mesh.corners.len() as u32)
+        let mut work: Vec<u32> = (0..mesh.edge_count())
             .filter(|&e| mesh.is_segment(e) && e < mesh.twin(e))
             .collect();
         while let Some(e) = work.pop() {
-            let mesh = &self.cdt.inserter.mesh;
+            let mesh = self.cdt.mesh().raw();
             let (u, v) = (mesh.origin(e), mesh.dest(e));
             if !mesh.is_segment(e) {
                 continue;
             }
-            if let Some(w) = self.cdt.flip_edge_onto_vertex(e, on_segment) {
-                let mesh = &self.cdt.inserter.mesh;
+            if let Some(w) = self
+                .cdt
+                .flip_edge_onto_vertex(EdgeId::new(e), on_segment)
+                .map(VertexId::raw)
+            {
+                let mesh = self.cdt.mesh().raw();
                 work.extend(
                     [(u, w), (w, v)]
                         .into_iter()
@@ -475,8 +480,8 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
 
     /// Splits encroached subsegments, then bad triangles, until none is left or a limit stops.
     fn refine_all(&mut self) {
-        let mesh = &self.cdt.inserter.mesh;
-        let segments: Vec<u32> = (0..mesh.corners.len() as u32)
+        let mesh = self.cdt.mesh().raw();
+        let segments: Vec<u32> = (0..mesh.edge_count())
             .filter(|&e| mesh.is_segment(e) && e < mesh.twin(e))
             .collect();
         for e in segments {
@@ -484,7 +489,7 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         }
         self.split_encroached();
         self.bad.clear();
-        for t in 0..self.cdt.inserter.mesh.triangle_count() {
+        for t in 0..self.cdt.mesh().raw().triangle_count() {
             if self.inside(t) {
                 self.check_triangle(t);
             }
@@ -492,10 +497,10 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         while !self.should_stop() {
             let Some(bad) = self.bad.pop() else { break };
             let [a, b, c] = bad.corners;
-            let Some(e) = self.cdt.inserter.mesh.find_edge(a, b) else {
+            let Some(e) = self.cdt.mesh().raw().find_edge(a, b) else {
                 continue;
             };
-            if self.cdt.inserter.mesh.apex(e) != c {
+            if self.cdt.mesh().raw().apex(e) != c {
                 continue; // gone since it was queued
             }
             self.split_triangle(triangle_of(e), bad);
@@ -538,7 +543,7 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         kind: VertexKind,
         attribute: impl Fn(&[f64], (usize, usize)) -> f64,
     ) -> u32 {
-        let vertex = self.cdt.inserter.mesh.add_point(p);
+        let vertex = self.cdt.add_point(p).raw();
         let k = self.attribute_count;
         for i in 0..k {
             let value = attribute(self.attributes, (i, k));
@@ -551,8 +556,8 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
 
     /// Queues what a new vertex may have spoiled: bad triangles around it, encroached segments.
     fn after_insertion(&mut self, vertex: u32) {
-        let mesh = &self.cdt.inserter.mesh;
-        let start = mesh.vertex_edge[vertex as usize];
+        let mesh = self.cdt.mesh().raw();
+        let start = mesh.vertex_edge(vertex);
         let mut around = Vec::new();
         let mut e = start;
         loop {
@@ -565,10 +570,10 @@ impl<'r, 'q, P: Predicates> Refiner<'r, 'q, P> {
         for e in around {
             let t = triangle_of(e);
             let opposite = next(e);
-            if self.cdt.inserter.mesh.is_segment(opposite) {
+            if self.cdt.mesh().raw().is_segment(opposite) {
                 self.check_segment(opposite);
             }
-            if self.cdt.inserter.mesh.is_segment(e) {
+            if self.cdt.mesh().raw().is_segment(e) {
                 self.check_segment(e);
             }
             if self.inside(t) {

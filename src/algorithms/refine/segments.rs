@@ -7,7 +7,7 @@ use super::*;
 impl<P: Predicates> Refiner<'_, '_, P> {
     /// Whether the segment of half-edge `e` may receive Steiner points (`Y`, `YY`).
     pub(super) fn may_split(&self, e: u32) -> bool {
-        let mesh = &self.cdt.inserter.mesh;
+        let mesh = self.cdt.mesh().raw();
         match self.quality.no_steiner_on_segments {
             0 => true,
             1 => self.inside(triangle_of(e)) && self.inside(triangle_of(mesh.twin(e))),
@@ -33,7 +33,7 @@ impl<P: Predicates> Refiner<'_, '_, P> {
 
     /// Queues the subsegment of half-edge `e` if an apex beside it encroaches it.
     pub(super) fn check_segment(&mut self, e: u32) {
-        let mesh = &self.cdt.inserter.mesh;
+        let mesh = self.cdt.mesh().raw();
         let (u, v) = (mesh.origin(e), mesh.dest(e));
         for h in [e, mesh.twin(e)] {
             let w = mesh.apex(h);
@@ -55,7 +55,7 @@ impl<P: Predicates> Refiner<'_, '_, P> {
                 self.encroached.push_front((u, v, forced));
                 break;
             }
-            let mesh = &self.cdt.inserter.mesh;
+            let mesh = self.cdt.mesh().raw();
             let Some(e) = mesh.find_edge(u, v).filter(|&e| mesh.is_segment(e)) else {
                 continue;
             };
@@ -121,7 +121,7 @@ impl<P: Predicates> Refiner<'_, '_, P> {
         if matches!(self.kinds[x as usize], VertexKind::OnSegment { .. }) {
             return None;
         }
-        let mesh = &self.cdt.inserter.mesh;
+        let mesh = self.cdt.mesh().raw();
         let o = mesh.point(x);
         let direction = |e: u32| {
             let p = mesh.point(mesh.dest(e));
@@ -129,7 +129,7 @@ impl<P: Predicates> Refiner<'_, '_, P> {
             let length = (d[0] * d[0] + d[1] * d[1]).sqrt();
             [d[0] / length, d[1] / length]
         };
-        let start = mesh.vertex_edge[x as usize];
+        let start = mesh.vertex_edge(x);
         let (mut e, mut first, mut previous): (u32, Option<Point>, Option<Point>) =
             (start, None, None);
         let mut sharpest: Option<f64> = None;
@@ -167,7 +167,7 @@ impl<P: Predicates> Refiner<'_, '_, P> {
     /// distance of it): the triangles made would be inverted. Such a subsegment is never tried
     /// again.
     pub(super) fn split_segment(&mut self, e: u32) -> bool {
-        let mesh = &self.cdt.inserter.mesh;
+        let mesh = self.cdt.mesh().raw();
         let (u, v) = (mesh.origin(e), mesh.dest(e));
         let (t, kind) = self.split_parameter(u, v);
         let (pu, pv) = (self.pt(u), self.pt(v));
@@ -190,8 +190,10 @@ impl<P: Predicates> Refiner<'_, '_, P> {
             attrs[u as usize * i.1 + i.0]
                 + t * (attrs[v as usize * i.1 + i.0] - attrs[u as usize * i.1 + i.0])
         });
-        let _ = self.cdt.inserter.insert_at(vertex, Location::OnEdge(e));
-        self.cdt.settle(vertex);
+        let _ = self
+            .cdt
+            .insert_at(VertexId::new(vertex), Location::OnEdge(EdgeId::new(e)));
+        self.cdt.settle(VertexId::new(vertex));
         self.after_insertion(vertex);
         true
     }

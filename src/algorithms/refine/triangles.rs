@@ -7,7 +7,7 @@ use super::*;
 impl<P: Predicates> Refiner<'_, '_, P> {
     /// Queues triangle `t` if it is bad.
     pub(super) fn check_triangle(&mut self, t: u32) {
-        let mesh = &self.cdt.inserter.mesh;
+        let mesh = self.cdt.mesh().raw();
         let [a, b, c] = mesh.triangle(t);
         let [pa, pb, pc] = [a, b, c].map(|v| mesh.point(v));
         let area = 0.5 * P::orient2d(pa, pb, pc);
@@ -37,7 +37,7 @@ impl<P: Predicates> Refiner<'_, '_, P> {
             let regional = if self.quality.variable_area {
                 self.domain
                     .max_area
-                    .get(mesh.tag[t as usize] as usize)
+                    .get(mesh.tag(t) as usize)
                     .copied()
                     .unwrap_or(-1.0)
             } else {
@@ -137,8 +137,8 @@ impl<P: Predicates> Refiner<'_, '_, P> {
 
     /// The id of a segment that vertex `v` lies on, if any.
     pub(super) fn segment_through(&self, v: u32) -> Option<u32> {
-        let mesh = &self.cdt.inserter.mesh;
-        let start = mesh.vertex_edge[v as usize];
+        let mesh = self.cdt.mesh().raw();
+        let start = mesh.vertex_edge(v);
         let mut e = start;
         loop {
             if mesh.is_segment(e) {
@@ -188,7 +188,7 @@ impl<P: Predicates> Refiner<'_, '_, P> {
     }
 
     pub(super) fn split_triangle(&mut self, t: u32, bad: BadTriangle) {
-        let corners = self.cdt.inserter.mesh.triangle(t);
+        let corners = self.cdt.mesh().raw().triangle(t);
         let (x, xi, eta) = self.split_point(corners);
         if !(x[0].is_finite() && x[1].is_finite()) {
             return;
@@ -199,7 +199,7 @@ impl<P: Predicates> Refiner<'_, '_, P> {
                 // A segment hides the new point from the triangle: the point may not be
                 // inserted, and the segment is split instead (Ruppert's rule; with lenses the
                 // point need not lie in its diametral circle).
-                let mesh = &self.cdt.inserter.mesh;
+                let mesh = self.cdt.mesh().raw();
                 let segment = (mesh.origin(s), mesh.dest(s), s);
                 self.split_instead(&[segment], bad);
             }
@@ -238,7 +238,7 @@ impl<P: Predicates> Refiner<'_, '_, P> {
                     );
                     va + xi * (vb - va) + eta * (vc - va)
                 });
-                let _ = self.cdt.inserter.insert_at(vertex, location);
+                let _ = self.cdt.insert_at(VertexId::new(vertex), location);
                 self.after_insertion(vertex);
             }
         }
@@ -265,10 +265,10 @@ impl<P: Predicates> Refiner<'_, '_, P> {
 
     /// Whether `x`, at `location`, would make an edge shorter than the floor.
     pub(super) fn too_close(&self, x: Point, location: Location) -> bool {
-        let mesh = &self.cdt.inserter.mesh;
+        let mesh = self.cdt.mesh().raw();
         let triangles = match location {
-            Location::InTriangle(t) | Location::Outside(t) => [t, t],
-            Location::OnEdge(e) => [triangle_of(e), triangle_of(mesh.twin(e))],
+            Location::InTriangle(t) | Location::Outside(t) => [t.raw(), t.raw()],
+            Location::OnEdge(e) => [triangle_of(e.raw()), triangle_of(mesh.twin(e.raw()))],
             Location::OnVertex(_) => return true,
         };
         triangles
@@ -283,7 +283,7 @@ impl<P: Predicates> Refiner<'_, '_, P> {
 
     /// Walks in a straight line from the centroid of triangle `t` to `x`, staying in the domain.
     pub(super) fn walk(&self, t: u32, x: Point) -> Walk {
-        let mesh = &self.cdt.inserter.mesh;
+        let mesh = self.cdt.mesh().raw();
         let [a, b, c] = mesh.triangle(t).map(|v| mesh.point(v));
         let g = [(a[0] + b[0] + c[0]) / 3.0, (a[1] + b[1] + c[1]) / 3.0];
         let mut t = t;
@@ -309,7 +309,7 @@ impl<P: Predicates> Refiner<'_, '_, P> {
             let (u, v) = (mesh.point(mesh.origin(exit)), mesh.point(mesh.dest(exit)));
             let side = P::orient2d(u, v, x);
             if side > 0.0 {
-                return Walk::Found(Location::InTriangle(t));
+                return Walk::Found(Location::InTriangle(TriangleId::new(t)));
             }
             if side == 0.0 {
                 // On the exit edge (or its line beyond the triangle, which the ray rules out).
@@ -318,10 +318,10 @@ impl<P: Predicates> Refiner<'_, '_, P> {
                 }
                 for w in [mesh.origin(exit), mesh.dest(exit)] {
                     if mesh.point(w) == x {
-                        return Walk::Found(Location::OnVertex(w));
+                        return Walk::Found(Location::OnVertex(VertexId::new(w)));
                     }
                 }
-                return Walk::Found(Location::OnEdge(exit));
+                return Walk::Found(Location::OnEdge(EdgeId::new(exit)));
             }
             if mesh.is_segment(exit) {
                 return Walk::Blocked(exit);
@@ -340,7 +340,7 @@ impl<P: Predicates> Refiner<'_, '_, P> {
     /// Where `x` lies in triangle `t`, if it lies in it (closed): in it, on an edge (a segment
     /// hides nothing then, but a point on a segment splits it: `Blocked`), or on a vertex.
     pub(super) fn walk_ends_in(&self, t: u32, x: Point) -> Option<Walk> {
-        let mesh = &self.cdt.inserter.mesh;
+        let mesh = self.cdt.mesh().raw();
         let sides = [0, 1, 2].map(|i| {
             let e = 3 * t + i;
             P::orient2d(mesh.point(mesh.origin(e)), mesh.point(mesh.dest(e)), x)
@@ -353,15 +353,17 @@ impl<P: Predicates> Refiner<'_, '_, P> {
             .map(|i| 3 * t + i)
             .collect();
         Some(match on[..] {
-            [] => Walk::Found(Location::InTriangle(t)),
+            [] => Walk::Found(Location::InTriangle(TriangleId::new(t))),
             [e] if mesh.is_segment(e) => Walk::Blocked(e),
-            [e] => Walk::Found(Location::OnEdge(e)),
+            [e] => Walk::Found(Location::OnEdge(EdgeId::new(e))),
             // On two edges: at their common corner.
             _ => mesh
                 .triangle(t)
                 .into_iter()
                 .find(|&w| mesh.point(w) == x)
-                .map_or(Walk::Lost, |w| Walk::Found(Location::OnVertex(w))),
+                .map_or(Walk::Lost, |w| {
+                    Walk::Found(Location::OnVertex(VertexId::new(w)))
+                }),
         })
     }
 
@@ -373,11 +375,11 @@ impl<P: Predicates> Refiner<'_, '_, P> {
         let mut seen = std::mem::take(&mut self.cavity);
         stack.clear();
         seen.clear();
-        let mesh = &self.cdt.inserter.mesh;
+        let mesh = self.cdt.mesh().raw();
         match location {
-            Location::InTriangle(t) | Location::Outside(t) => stack.push(t),
+            Location::InTriangle(t) | Location::Outside(t) => stack.push(t.raw()),
             Location::OnEdge(e) => {
-                stack.extend_from_slice(&[triangle_of(e), triangle_of(mesh.twin(e))])
+                stack.extend_from_slice(&[triangle_of(e.raw()), triangle_of(mesh.twin(e.raw()))])
             }
             Location::OnVertex(_) => {}
         }
@@ -415,7 +417,7 @@ impl<P: Predicates> Refiner<'_, '_, P> {
     /// The quality ([`min_angle_sin2`]) of the worst triangle that inserting `x` makes: `x`
     /// joined to the edges around the cavity that [`Self::encroached_by`] found for it.
     pub(super) fn worst_triangle_made(&self, x: Point) -> f64 {
-        let mesh = &self.cdt.inserter.mesh;
+        let mesh = self.cdt.mesh().raw();
         let mut worst = f64::INFINITY;
         for &t in &self.cavity {
             for e in 3 * t..3 * t + 3 {
