@@ -7,7 +7,8 @@
 //! segment's marker, else 1 on a boundary, else 0.
 
 use crate::data::{Input, Output, VoronoiOutput};
-use crate::mesh::{triangle_of, Mesh, GHOST, NONE};
+use crate::mesh::raw::{triangle_of, RawMesh, GHOST};
+use crate::mesh::{Mesh, NONE};
 use crate::options::Options;
 
 /// Whether the outputs of a Delaunay triangulation of the input points can be built by
@@ -36,10 +37,10 @@ pub fn plain_delaunay(options: &Options) -> bool {
 pub fn delaunay_outputs(
     options: &Options,
     input: &Input<'_>,
-    mut mesh: Mesh,
+    mesh: Mesh,
     mut output: Output,
 ) -> (Output, VoronoiOutput) {
-    let n = mesh.points.len();
+    let n = mesh.vertex_count() as usize;
     let k = input.point_attribute_count;
     let write_nodes = !options.output.no_node_output;
     let mut markers = (write_nodes && !options.output.no_boundary_markers).then(|| {
@@ -47,8 +48,8 @@ pub fn delaunay_outputs(
             .point_markers
             .map_or_else(|| vec![0; n], <[i32]>::to_vec)
     });
-    drop(std::mem::take(&mut mesh.twins));
-    let mut corners = std::mem::take(&mut mesh.corners);
+    let parts = mesh.into_corners_and_points();
+    let (mut corners, mut points) = (parts.corners, Some(parts.points));
     let (mut kept, mut ghosts) = (0, 0);
     let base = options.first_index();
     for t in 0..corners.len() / 3 {
@@ -78,7 +79,7 @@ pub fn delaunay_outputs(
     output.point_count = n;
     output.point_attribute_count = k;
     if write_nodes {
-        output.points = Some(std::mem::take(&mut mesh.points).into_flattened());
+        output.points = points.take().map(Vec::into_flattened);
         if k > 0 {
             output.point_attributes = Some(input.point_attributes.to_vec());
         }
@@ -157,15 +158,21 @@ impl Numbering {
     }
 }
 
-impl FinishedMesh<'_> {
+impl<'a> FinishedMesh<'a> {
+    /// The mesh in raw `u32` ids: the output numbering is in raw indices.
+    #[inline(always)]
+    fn m(&self) -> RawMesh<'a> {
+        self.mesh.raw()
+    }
+
     #[inline(always)]
     fn is_boundary(&self, e: u32) -> bool {
-        !self.triangle_in_mesh[triangle_of(self.mesh.twin(e)) as usize]
+        !self.triangle_in_mesh[triangle_of(self.m().twin(e)) as usize]
     }
 
     fn segment_marker_of(&self, e: u32) -> Option<i32> {
         let markers = self.segment_markers?;
-        let id = self.mesh.segment_of(e);
+        let id = self.m().segment_of(e);
         (id != NONE).then(|| markers[id as usize])
     }
 
@@ -174,7 +181,7 @@ impl FinishedMesh<'_> {
     /// only the per-slot and per-edge lists that `options` ask for: at 10^6 triangles each list is
     /// megabytes of memory traffic.
     pub fn numbering(&self, options: &Options, jettison: bool) -> Numbering {
-        let slots = self.mesh.triangle_count() as usize;
+        let slots = self.m().triangle_count() as usize;
         let mut triangles = Vec::with_capacity(slots);
         triangles.extend((0..slots as u32).filter(|&t| self.triangle_in_mesh[t as usize]));
         let mut triangle = Vec::new();
@@ -195,8 +202,8 @@ impl FinishedMesh<'_> {
         let mut boundary_edges = Vec::new();
         let mut segment_edges = Vec::new();
         let mut edge_count = 0;
-        let segments = &self.mesh.segment;
-        let (twins, in_mesh) = (&self.mesh.twins, self.triangle_in_mesh);
+        let segments = self.mesh.raw_segments();
+        let (twins, in_mesh) = (self.mesh.raw_twins(), self.triangle_in_mesh);
         for &t in &triangles {
             for e in 3 * t..3 * t + 3 {
                 let f = twins[e as usize];
@@ -216,7 +223,7 @@ impl FinishedMesh<'_> {
             }
         }
         edges.truncate(edge_count);
-        let n = self.mesh.points.len();
+        let n = self.mesh.vertex_count() as usize;
         let (vertex, vertex_count) = if jettison {
             let mut map = vec![NONE; n];
             let mut count = 0u32;
@@ -247,27 +254,27 @@ impl FinishedMesh<'_> {
     /// endpoint of a piece of; else 1 on the boundary of the mesh; else 0. (A duplicate left out
     /// of the mesh keeps its input marker, as in Triangle.)
     fn vertex_markers(&self, numbering: &Numbering) -> Vec<i32> {
-        let n = self.mesh.points.len();
+        let n = self.mesh.vertex_count() as usize;
         let mut first_segment = vec![NONE; n];
         // On the boundary: an edge of the mesh with the outside on one side, or (as Triangle marks
         // them before eating triangles) a piece of a segment on the convex hull.
         let mut on_boundary = vec![false; n];
         for &e in &numbering.boundary_edges {
-            on_boundary[self.mesh.origin(e) as usize] = true;
-            on_boundary[self.mesh.dest(e) as usize] = true;
+            on_boundary[self.m().origin(e) as usize] = true;
+            on_boundary[self.m().dest(e) as usize] = true;
         }
         if let Some(markers) = self.segment_markers {
             // One pass over the segment ids; only half-edges on segments are looked at further.
-            for (e, &id) in self.mesh.segment.iter().enumerate() {
+            for (e, &id) in self.mesh.raw_segments().iter().enumerate() {
                 if id == NONE {
                     continue;
                 }
                 let e = e as u32;
-                let (a, b) = (self.mesh.origin(e), self.mesh.dest(e));
+                let (a, b) = (self.m().origin(e), self.m().dest(e));
                 if markers[id as usize] != 0 && a != GHOST && id < first_segment[a as usize] {
                     first_segment[a as usize] = id;
                 }
-                if a != GHOST && b != GHOST && self.mesh.apex(e) == GHOST {
+                if a != GHOST && b != GHOST && self.m().apex(e) == GHOST {
                     on_boundary[a as usize] = true;
                     on_boundary[b as usize] = true;
                 }
@@ -294,18 +301,18 @@ impl FinishedMesh<'_> {
     fn write_second_order(&self, options: &Options, numbering: &Numbering, output: &mut Output) {
         let base = options.first_index();
         let first = numbering.vertex_count as u32;
-        let mut node_of_half_edge = vec![NONE; self.mesh.corners.len()];
+        let mut node_of_half_edge = vec![NONE; self.mesh.edge_count() as usize];
         for (i, &e) in numbering.edges.iter().enumerate() {
             node_of_half_edge[e as usize] = first + i as u32;
-            node_of_half_edge[self.mesh.twin(e) as usize] = first + i as u32;
+            node_of_half_edge[self.m().twin(e) as usize] = first + i as u32;
         }
         output.point_count += numbering.edges.len();
         output.corners = 6;
-        let ends = |e: u32| (self.mesh.origin(e) as usize, self.mesh.dest(e) as usize);
+        let ends = |e: u32| (self.m().origin(e) as usize, self.m().dest(e) as usize);
         if let Some(points) = output.points.as_mut() {
             for &e in &numbering.edges {
                 let (a, b) = ends(e);
-                let (p, q) = (self.mesh.points[a], self.mesh.points[b]);
+                let (p, q) = (self.mesh.points()[a], self.mesh.points()[b]);
                 points.extend_from_slice(&[0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1])]);
             }
         }
@@ -325,7 +332,7 @@ impl FinishedMesh<'_> {
             let mut tris = Vec::with_capacity(6 * numbering.triangles.len());
             for &t in &numbering.triangles {
                 tris.extend(
-                    self.mesh
+                    self.m()
                         .triangle(t)
                         .map(|v| numbering.vertex_index(v) as i32 + base),
                 );
@@ -349,17 +356,17 @@ impl FinishedMesh<'_> {
         let base = options.first_index();
         let vid = |v: u32| numbering.vertex_index(v) as i32 + base;
         let markers = !options.output.no_boundary_markers;
-        let n = self.mesh.points.len();
+        let n = self.mesh.vertex_count() as usize;
         let kept = |v: &usize| numbering.vertex.as_ref().is_none_or(|map| map[*v] != NONE);
 
         output.point_count = numbering.vertex_count;
         output.point_attribute_count = self.point_attribute_count;
         if !options.output.no_node_output {
             output.points = Some(match &numbering.vertex {
-                None => self.mesh.points.as_flattened().to_vec(),
+                None => self.mesh.points().as_flattened().to_vec(),
                 Some(_) => (0..n)
                     .filter(kept)
-                    .flat_map(|v| self.mesh.points[v])
+                    .flat_map(|v| self.mesh.points()[v])
                     .collect(),
             });
             if self.point_attribute_count > 0 {
@@ -389,11 +396,8 @@ impl FinishedMesh<'_> {
                     // Output triangles are never ghosts: every corner is a vertex id.
                     for &t in &numbering.triangles {
                         let i = 3 * t as usize;
-                        let [a, b, c] = [
-                            self.mesh.corners[i],
-                            self.mesh.corners[i + 1],
-                            self.mesh.corners[i + 2],
-                        ];
+                        let corners = self.mesh.raw_corners();
+                        let [a, b, c] = [corners[i], corners[i + 1], corners[i + 2]];
                         tris.extend_from_slice(&[
                             a as i32 + base,
                             b as i32 + base,
@@ -403,7 +407,7 @@ impl FinishedMesh<'_> {
                 }
                 Some(_) => {
                     for &t in &numbering.triangles {
-                        tris.extend(self.mesh.triangle(t).map(vid));
+                        tris.extend(self.m().triangle(t).map(vid));
                     }
                 }
             }
@@ -415,7 +419,7 @@ impl FinishedMesh<'_> {
             for &t in &numbering.triangles {
                 for i in 0..3 {
                     let e = 3 * t + (i + 1) % 3;
-                    let other = numbering.triangle[triangle_of(self.mesh.twin(e)) as usize];
+                    let other = numbering.triangle[triangle_of(self.m().twin(e)) as usize];
                     neighbors.push(if other == NONE {
                         -1
                     } else {
@@ -432,7 +436,7 @@ impl FinishedMesh<'_> {
             output.edges = Some(
                 edges
                     .iter()
-                    .flat_map(|&e| [vid(self.mesh.origin(e)), vid(self.mesh.dest(e))])
+                    .flat_map(|&e| [vid(self.m().origin(e)), vid(self.m().dest(e))])
                     .collect(),
             );
             if markers {
@@ -457,7 +461,7 @@ impl FinishedMesh<'_> {
             output.segments = Some(
                 segments
                     .iter()
-                    .flat_map(|&e| [vid(self.mesh.dest(e)), vid(self.mesh.origin(e))])
+                    .flat_map(|&e| [vid(self.m().dest(e)), vid(self.m().origin(e))])
                     .collect(),
             );
             if markers {

@@ -11,7 +11,7 @@ use crate::assemble::{self, FinishedMesh, Numbering};
 use crate::data::{Hooks, Input, Output, Phase, UnsuitableFn, VoronoiOutput};
 use crate::error::Error;
 use crate::geometry::{Exact, Inexact, Point, Predicates};
-use crate::mesh::{Mesh, GHOST, NONE, OUTSIDE};
+use crate::mesh::{Mesh, TriangleId, VertexId, GHOST, NONE, OUTSIDE};
 use crate::options::{Algorithm, Options};
 use crate::scaling::Scaling;
 
@@ -311,7 +311,7 @@ fn run<P: Predicates>(
         }
         for c in &cdt.crossings {
             // New vertices where segments cross: attributes interpolated along the crossed one.
-            let (from, to) = (c.from as usize * k, c.to as usize * k);
+            let (from, to) = (c.from.index() * k, c.to.index() * k);
             for i in 0..k {
                 let (a, b) = (
                     meshed.point_attributes[from + i],
@@ -332,7 +332,7 @@ fn run<P: Predicates>(
                 None
             };
             Domain::per_triangle(
-                &mut cdt.inserter.mesh,
+                cdt.mesh_mut(),
                 input.triangle_count(),
                 input.triangle_attributes,
                 areas,
@@ -340,17 +340,15 @@ fn run<P: Predicates>(
         } else if options.pslg {
             carve(&mut cdt, options.convex_hull, holes, input.regions)
         } else {
-            Domain::whole(&mut cdt.inserter.mesh)
+            Domain::whole(cdt.mesh_mut())
         };
         if options.quality() {
             if options.pslg && !options.refine {
                 // Refinement works inside the domain only: the eaten triangles go, and ghosts
                 // cover the domain's boundary (made of segments), as after `r`. Left in place,
                 // slivers outside could not be split with a boundary segment without inverting.
-                let tag = std::mem::take(&mut cdt.inserter.mesh.tag);
-                cdt.inserter.mesh.tag = tag.clone();
-                cdt.inserter
-                    .retain_triangles(|t| tag[t as usize] != OUTSIDE);
+                let tag = cdt.mesh().tags().to_vec();
+                cdt.retain_triangles(|t| tag[t.index()] != OUTSIDE);
             }
             let quality = Quality {
                 min_angle: options.min_angle,
@@ -385,9 +383,11 @@ fn run<P: Predicates>(
                 .extend(report.warnings.iter().map(ToString::to_string));
         }
         meshed.segment_markers = std::mem::take(&mut cdt.markers);
-        meshed.mesh = cdt.inserter.mesh;
+        meshed.mesh = cdt.into_mesh();
         // New vertices (crossings, Steiner points) have no input marker.
-        meshed.point_markers.resize(meshed.mesh.points.len(), 0);
+        meshed
+            .point_markers
+            .resize(meshed.mesh.vertex_count() as usize, 0);
     } else {
         meshed.domain = Domain::whole(&mut meshed.mesh);
     }
@@ -459,7 +459,7 @@ fn insert_segments<P: Predicates>(
         }
         let id = cdt.new_segment_id(marker, a, b);
         inserted.insert((a.min(b), a.max(b)), id);
-        cdt.insert_segment(a, b, id)?;
+        cdt.insert_segment(VertexId::new(a), VertexId::new(b), id)?;
         if i % 4096 == 4095 {
             hooks.report(Phase::Segments, i as u64 + 1, m);
         }
@@ -478,16 +478,16 @@ fn write_outputs(
     let mesh = &meshed.mesh;
     // With no triangle at all (all points on a line) no vertex is left out, as in Triangle.
     let all_collinear = mesh.triangle_count() == 0 && !meshed.uses_segments;
-    let triangle_in_mesh: Vec<bool> = mesh.tag.iter().map(|&tag| tag != OUTSIDE).collect();
+    let triangle_in_mesh: Vec<bool> = mesh.tags().iter().map(|&tag| tag != OUTSIDE).collect();
     // Only `j` asks which vertices are corners of output triangles.
     let mut vertex_in_mesh = Vec::new();
     if options.jettison {
-        vertex_in_mesh = vec![all_collinear; mesh.points.len()];
+        vertex_in_mesh = vec![all_collinear; mesh.vertex_count() as usize];
         for (t, &inside) in triangle_in_mesh.iter().enumerate() {
             if inside {
-                for v in mesh.triangle(t as u32) {
+                for v in mesh.triangle(TriangleId::new(t as u32)) {
                     if v != GHOST {
-                        vertex_in_mesh[v as usize] = true;
+                        vertex_in_mesh[v.index()] = true;
                     }
                 }
             }
@@ -498,7 +498,7 @@ fn write_outputs(
     let mut jettison = options.jettison;
     if options.refine && input.corners > 3 && !options.jettison {
         let base = i64::from(options.first_index());
-        let n = mesh.points.len();
+        let n = mesh.vertex_count() as usize;
         let mut mid_node_only = vec![false; n];
         let index = |v: i32| usize::try_from(i64::from(v) - base).ok().filter(|&i| i < n);
         for t in input.triangles.chunks_exact(input.corners) {
@@ -529,7 +529,9 @@ fn write_outputs(
         all_collinear,
         vertex_in_mesh: &vertex_in_mesh,
         triangle_in_mesh: &triangle_in_mesh,
-        segment_markers: (!mesh.segment.is_empty()).then_some(&meshed.segment_markers[..]),
+        segment_markers: mesh
+            .tracks_segments()
+            .then_some(&meshed.segment_markers[..]),
         uses_segments: meshed.uses_segments,
     };
     let numbering = finished.numbering(options, jettison);
@@ -543,7 +545,7 @@ fn write_outputs(
         let attributes = numbering
             .triangles
             .iter()
-            .flat_map(|&t| domain.attributes_of(mesh.tag[t as usize]))
+            .flat_map(|&t| domain.attributes_of(mesh.tags()[t as usize]))
             .copied()
             .collect();
         output.triangle_attribute_count = domain.attribute_count;
@@ -593,14 +595,14 @@ fn unscale_outputs(
     voronoi: &mut VoronoiOutput,
 ) -> Result<(), Error> {
     let n = caller_points.len() / 2;
-    let new_vertices = &mesh.points[n..];
+    let new_vertices = &mesh.points()[n..];
     if new_vertices
         .iter()
         .any(|p| scaling.rounds_on_output(p[0]) || scaling.rounds_on_output(p[1]))
     {
-        let rounded = |v: u32| mesh.points[v as usize].map(|x| scaling.scale(scaling.unscale(x)));
+        let rounded = |v: VertexId| mesh.point(v).map(|x| scaling.scale(scaling.unscale(x)));
         if numbering.triangles.iter().any(|&t| {
-            let [a, b, c] = mesh.triangle(t).map(rounded);
+            let [a, b, c] = mesh.triangle(TriangleId::new(t)).map(rounded);
             Exact::orient2d(a, b, c) <= 0.0
         }) {
             return Err(Error::CoordinateRange(
@@ -639,7 +641,7 @@ fn check_mesh<P: Predicates>(meshed: &Meshed) -> String {
     }
     let mut inverted = 0;
     let mut not_delaunay = 0;
-    for t in 0..mesh.triangle_count() {
+    for t in mesh.triangles() {
         if mesh.is_ghost(t) {
             continue;
         }
@@ -647,7 +649,7 @@ fn check_mesh<P: Predicates>(meshed: &Meshed) -> String {
         if P::orient2d(a, b, c) <= 0.0 {
             inverted += 1;
         }
-        for e in 3 * t..3 * t + 3 {
+        for e in t.edges() {
             let q = mesh.apex(mesh.twin(e));
             if q != GHOST && !mesh.is_segment(e) && P::incircle(a, b, c, mesh.point(q)) > 0.0 {
                 not_delaunay += 1;

@@ -7,7 +7,7 @@
 
 use crate::algorithms::constrain::Constrainer;
 use crate::geometry::{Point, Predicates};
-use crate::mesh::{triangle_of, Mesh, GHOST, OUTSIDE};
+use crate::mesh::{Mesh, TriangleId, GHOST, OUTSIDE};
 
 /// What the triangle tags ([`Mesh::tag`]) stand for: tag [`OUTSIDE`] for eaten triangles and
 /// ghosts, [`INSIDE`] for the domain outside every region, `FIRST_REGION + r` for region `r`.
@@ -28,9 +28,11 @@ pub const FIRST_REGION: u32 = 2;
 impl Domain {
     /// The domain without regions: every non-ghost triangle is inside.
     pub fn whole(mesh: &mut Mesh) -> Domain {
-        mesh.tag = (0..mesh.triangle_count())
+        let tags = mesh
+            .triangles()
             .map(|t| if mesh.is_ghost(t) { OUTSIDE } else { INSIDE })
             .collect();
+        mesh.set_tags(tags);
         Domain {
             attribute_count: 0,
             attributes: Vec::new(),
@@ -46,7 +48,7 @@ impl Domain {
         attributes: &[f64],
         areas: Option<&[f64]>,
     ) -> Domain {
-        mesh.tag = (0..mesh.triangle_count())
+        let tags = (0..mesh.triangle_count())
             .map(|t| {
                 if (t as usize) < input_triangles {
                     FIRST_REGION + t
@@ -55,6 +57,7 @@ impl Domain {
                 }
             })
             .collect();
+        mesh.set_tags(tags);
         let attribute_count = attributes.len().checked_div(input_triangles).unwrap_or(0);
         let mut all_attributes = vec![0.0; FIRST_REGION as usize * attribute_count];
         all_attributes.extend_from_slice(attributes);
@@ -76,14 +79,14 @@ impl Domain {
 
 /// Visits every triangle reachable from `seeds` across non-segment edges: `try_visit(t)` visits
 /// `t` if it may be entered and was not visited yet, and says whether it did.
-fn flood(mesh: &Mesh, seeds: Vec<u32>, mut try_visit: impl FnMut(u32) -> bool) {
-    let mut stack: Vec<u32> = seeds.into_iter().filter(|&t| try_visit(t)).collect();
+fn flood(mesh: &Mesh, seeds: Vec<TriangleId>, mut try_visit: impl FnMut(TriangleId) -> bool) {
+    let mut stack: Vec<TriangleId> = seeds.into_iter().filter(|&t| try_visit(t)).collect();
     while let Some(t) = stack.pop() {
-        for e in 3 * t..3 * t + 3 {
+        for e in t.edges() {
             if mesh.is_segment(e) {
                 continue;
             }
-            let u = triangle_of(mesh.twin(e));
+            let u = mesh.twin(e).triangle();
             if try_visit(u) {
                 stack.push(u);
             }
@@ -100,22 +103,21 @@ pub fn carve<P: Predicates>(
     holes: &[f64],
     regions: &[f64],
 ) -> Domain {
-    let domain = Domain::whole(&mut cdt.inserter.mesh);
-    let slots = cdt.inserter.mesh.triangle_count() as usize;
+    let domain = Domain::whole(cdt.mesh_mut());
     let mut seeds = Vec::new();
     if !keep_convex_hull {
         // Real triangles along hull edges that are not segments: found from the ghost triangles
         // (tagged outside), whose one finite edge is a hull edge, rather than by looking across
         // every edge of every triangle.
-        let mesh = &cdt.inserter.mesh;
-        for t in 0..slots as u32 {
-            if mesh.tag[t as usize] != OUTSIDE {
+        let mesh = cdt.mesh();
+        for t in mesh.triangles() {
+            if mesh.tag(t) != OUTSIDE {
                 continue;
             }
-            for e in 3 * t..3 * t + 3 {
+            for e in t.edges() {
                 let h = mesh.twin(e);
                 if mesh.origin(e) != GHOST && mesh.dest(e) != GHOST && !mesh.is_segment(h) {
-                    seeds.push(triangle_of(h));
+                    seeds.push(h.triangle());
                 }
             }
         }
@@ -125,9 +127,9 @@ pub fn carve<P: Predicates>(
             seeds.push(t);
         }
     }
-    let mut tag = std::mem::take(&mut cdt.inserter.mesh.tag);
-    flood(&cdt.inserter.mesh, seeds, |t| {
-        std::mem::replace(&mut tag[t as usize], OUTSIDE) != OUTSIDE
+    let mut tag = cdt.mesh_mut().take_tags();
+    flood(cdt.mesh(), seeds, |t| {
+        std::mem::replace(&mut tag[t.index()], OUTSIDE) != OUTSIDE
     });
 
     let mut domain = domain;
@@ -141,14 +143,14 @@ pub fn carve<P: Predicates>(
         let Some(t) = cdt.triangle_at(point) else {
             continue;
         };
-        flood(&cdt.inserter.mesh, vec![t], |u| {
-            let enter = tag[u as usize] != OUTSIDE && tag[u as usize] != region_tag;
+        flood(cdt.mesh(), vec![t], |u| {
+            let enter = tag[u.index()] != OUTSIDE && tag[u.index()] != region_tag;
             if enter {
-                tag[u as usize] = region_tag;
+                tag[u.index()] = region_tag;
             }
             enter
         });
     }
-    cdt.inserter.mesh.tag = tag;
+    cdt.mesh_mut().set_tags(tag);
     domain
 }

@@ -9,7 +9,7 @@ use std::collections::HashMap;
 
 use crate::error::Error;
 use crate::geometry::{Point, Predicates};
-use crate::mesh::Mesh;
+use crate::mesh::{EdgeId, Mesh, VertexId};
 
 /// Builds the mesh of the given triangles (`corners` indices per triangle, the first three used,
 /// numbered from `base`). Triangle `i` of the input becomes triangle `i` of the mesh (turned
@@ -39,6 +39,7 @@ pub fn reconstruct<P: Predicates>(
             }
             v[k] = index as u32;
         }
+        let mut v = v.map(VertexId::new);
         let o = P::orient2d(mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2]));
         if o == 0.0 {
             return Err(Error::InvalidMesh(format!(
@@ -52,20 +53,20 @@ pub fn reconstruct<P: Predicates>(
         mesh.add_triangle(v[0], v[1], v[2]);
     }
     // Twins: each directed edge meets its reverse.
-    let mut directed: HashMap<(u32, u32), u32> = HashMap::with_capacity(3 * count);
-    for e in 0..3 * count as u32 {
+    let mut directed: HashMap<(VertexId, VertexId), EdgeId> = HashMap::with_capacity(3 * count);
+    for e in (0..3 * count as u32).map(EdgeId::new) {
         let key = (mesh.origin(e), mesh.dest(e));
         if directed.insert(key, e).is_some() {
             return Err(Error::InvalidMesh(format!(
                 "the edge from vertex {} to vertex {} belongs to more than two triangles (or two triangles overlap)",
-                key.0 as i64 + base as i64,
-                key.1 as i64 + base as i64
+                key.0.raw() as i64 + base as i64,
+                key.1.raw() as i64 + base as i64
             )));
         }
     }
-    for e in 0..3 * count as u32 {
+    for e in (0..3 * count as u32).map(EdgeId::new) {
         if let Some(&f) = directed.get(&(mesh.dest(e), mesh.origin(e))) {
-            mesh.twins[e as usize] = f;
+            mesh.link(e, f);
         }
     }
     mesh.cover_boundary_with_ghosts();
@@ -103,9 +104,7 @@ mod tests {
         tris.extend_from_slice(&[15, 17, 16]);
         let mesh = reconstruct::<Exact>(points, &tris, 3, 0).unwrap();
         mesh.check_topology().unwrap();
-        let ghosts = (0..mesh.triangle_count())
-            .filter(|&t| mesh.is_ghost(t))
-            .count();
+        let ghosts = mesh.triangles().filter(|&t| mesh.is_ghost(t)).count();
         assert_eq!(ghosts, 12 + 4 + 3);
         assert!(
             reconstruct::<Exact>(vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], &[0, 1, 3], 3, 0)

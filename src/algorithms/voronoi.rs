@@ -7,7 +7,8 @@
 
 use crate::data::VoronoiDiagram;
 use crate::geometry::circumcenter;
-use crate::mesh::{triangle_of, Mesh, NONE};
+use crate::mesh::raw::triangle_of;
+use crate::mesh::{Mesh, NONE};
 
 /// Which triangles and edges of a mesh the diagram is the dual of, in the output's order (the
 /// numbering is the output assembly's: the diagram's vertices are numbered as the triangles).
@@ -26,6 +27,7 @@ pub struct DualOf<'a> {
 }
 
 pub fn voronoi_diagram(mesh: &Mesh, dual: &DualOf<'_>) -> VoronoiDiagram {
+    let mesh = mesh.raw(); // the dual's lists are in the output's raw numbering
     let (k, base) = (dual.point_attribute_count, dual.base);
     let attrs = |v: u32| &dual.point_attributes[v as usize * k..v as usize * k + k];
     let mut points = Vec::with_capacity(2 * dual.triangles.len());

@@ -10,9 +10,9 @@ use super::*;
 /// `v[i+1]` that stays (outside the cavity, across its boundary).
 #[derive(Clone, Default)]
 pub(super) struct Chain {
-    vertices: Vec<u32>,
+    vertices: Vec<VertexId>,
     points: Vec<Point>,
-    outer: Vec<u32>,
+    outer: Vec<EdgeId>,
 }
 
 impl Chain {
@@ -22,7 +22,7 @@ impl Chain {
         self.outer.clear();
     }
 
-    pub(super) fn push(&mut self, vertex: u32, point: Point) {
+    pub(super) fn push(&mut self, vertex: VertexId, point: Point) {
         self.vertices.push(vertex);
         self.points.push(point);
     }
@@ -48,8 +48,8 @@ impl<P: Predicates> Constrainer<P> {
     /// tagged or the plan is not a valid triangulation (a new triangle not counter-clockwise, an
     /// edge with the cavity on both sides not matched up); neither was seen with exact
     /// predicates, and the caller then recovers the segment by flips.
-    pub(super) fn retriangulate_cavity(&mut self, a: u32, b: u32, id: u32) -> bool {
-        if !self.inserter.mesh.tag.is_empty() {
+    pub(super) fn retriangulate_cavity(&mut self, a: VertexId, b: VertexId, id: u32) -> bool {
+        if self.inserter.mesh().tracks_tags() {
             // Tags would have to be assigned per new triangle; the flip path does that.
             return false;
         }
@@ -65,7 +65,7 @@ impl<P: Predicates> Constrainer<P> {
             inner_links,
             ..
         } = &mut self.scratch;
-        let mesh = &self.inserter.mesh;
+        let mesh = self.inserter.mesh();
         let k = crossed.len();
         debug_assert!(k > 0);
         // The crossed triangles T0 … Tk: T0 = (a, r1, l1) holds the first crossed edge r1 → l1;
@@ -76,28 +76,28 @@ impl<P: Predicates> Constrainer<P> {
         right.clear();
         slots.clear();
         let h1 = crossed[0];
-        slots.push(triangle_of(h1));
+        slots.push(h1.triangle());
         let (pa, l1, r1) = (mesh.point(a), mesh.dest(h1), mesh.origin(h1));
         left.push(a, pa);
         left.push(l1, mesh.point(l1));
-        left.outer.push(mesh.twin(next(h1))); // a → l1
+        left.outer.push(mesh.twin(h1.next())); // a → l1
         right.push(a, pa);
         right.push(r1, mesh.point(r1));
-        right.outer.push(mesh.twin(prev(h1))); // r1 → a
+        right.outer.push(mesh.twin(h1.prev())); // r1 → a
         for i in 0..k {
             let f = mesh.twin(crossed[i]); // left → right, in the next triangle of the cavity
-            slots.push(triangle_of(f));
+            slots.push(f.triangle());
             let z = mesh.apex(f);
             let pz = mesh.point(z);
             let last = i + 1 == k;
             // The next crossed edge is right → z when z is on the left, z → left otherwise.
-            if last || crossed[i + 1] == next(f) {
+            if last || crossed[i + 1] == f.next() {
                 left.push(z, pz);
-                left.outer.push(mesh.twin(prev(f))); // left → z
+                left.outer.push(mesh.twin(f.prev())); // left → z
             }
-            if last || crossed[i + 1] == prev(f) {
+            if last || crossed[i + 1] == f.prev() {
                 right.push(z, pz);
-                right.outer.push(mesh.twin(next(f))); // z → right
+                right.outer.push(mesh.twin(f.next())); // z → right
             }
         }
         debug_assert!(*left.vertices.last().unwrap() == b && *right.vertices.last().unwrap() == b);
@@ -119,8 +119,18 @@ impl<P: Predicates> Constrainer<P> {
         triangles.clear();
         outer_links.clear();
         tasks.clear();
-        tasks.push((Polygon::Right, 0, right.vertices.len() as u32 - 1, NONE));
-        tasks.push((Polygon::Left, 0, left.vertices.len() as u32 - 1, NONE));
+        tasks.push((
+            Polygon::Right,
+            0,
+            right.vertices.len() as u32 - 1,
+            EdgeId::NONE,
+        ));
+        tasks.push((
+            Polygon::Left,
+            0,
+            left.vertices.len() as u32 - 1,
+            EdgeId::NONE,
+        ));
         while let Some((polygon, first, last, join)) = tasks.pop() {
             let chain = match polygon {
                 Polygon::Left => &*left,
@@ -129,7 +139,7 @@ impl<P: Predicates> Constrainer<P> {
             if last == first + 1 {
                 // A boundary edge of the cavity: the half-edge `join` becomes its twin.
                 let outer = chain.outer[first as usize];
-                if sorted_slots.binary_search(&triangle_of(outer)).is_ok() {
+                if sorted_slots.binary_search(&outer.triangle()).is_ok() {
                     inner_links.push((join, outer, mesh.segment_of(outer)));
                 } else {
                     outer_links.push((join, outer));
@@ -146,18 +156,18 @@ impl<P: Predicates> Constrainer<P> {
             }
             let t = slots[triangles.len()];
             let corners = [v[first as usize], v[last as usize], v[apex as usize]];
-            let join = if join == NONE && matches!(polygon, Polygon::Right) {
+            let join = if join == EdgeId::NONE && matches!(polygon, Polygon::Right) {
                 // The right polygon's base b → a is the twin of the left one's a → b, which is the
                 // first new triangle's base (the left polygon is planned first).
-                3 * slots[0]
+                slots[0].edge(0)
             } else {
                 join
             };
             triangles.push((corners, join));
             // Triangle (u, w, c): w → c at 3t + 1 faces the sub-polygon (apex … last), c → u at
             // 3t + 2 the sub-polygon (first … apex).
-            tasks.push((polygon, apex, last, 3 * t + 1));
-            tasks.push((polygon, first, apex, 3 * t + 2));
+            tasks.push((polygon, apex, last, t.edge(1)));
+            tasks.push((polygon, first, apex, t.edge(2)));
         }
         debug_assert_eq!(triangles.len(), slots.len());
         if !inner_links.is_empty() {
@@ -179,35 +189,25 @@ impl<P: Predicates> Constrainer<P> {
         }
 
         // Commit: the slots' triangles are rewritten, joined to each other and to the outside.
-        let mesh = &mut self.inserter.mesh;
-        for (&t, &([u, w, c], join)) in slots.iter().zip(triangles.iter()) {
-            let base = 3 * t as usize;
-            mesh.corners[base..base + 3].copy_from_slice(&[u, w, c]);
-            mesh.segment[base..base + 3].fill(NONE);
-            if join != NONE {
-                mesh.twins[base] = join;
-                mesh.twins[join as usize] = base as u32;
-            }
+        let mesh = self.inserter.mesh_mut();
+        for (&t, &(corners, join)) in slots.iter().zip(triangles.iter()) {
             // Every cavity vertex is a corner of a new triangle: its outgoing half-edge is
             // refreshed here (the old one may have been in the cavity).
-            mesh.vertex_edge[u as usize] = base as u32;
-            mesh.vertex_edge[w as usize] = base as u32 + 1;
-            mesh.vertex_edge[c as usize] = base as u32 + 2;
+            mesh.rewrite_triangle(t, corners);
+            if join != EdgeId::NONE {
+                mesh.link(t.edge(0), join);
+            }
         }
         for &(inner, outer) in outer_links.iter() {
-            mesh.twins[inner as usize] = outer;
-            mesh.twins[outer as usize] = inner;
-            mesh.segment[inner as usize] = mesh.segment[outer as usize];
+            mesh.link_to_outer(inner, outer);
         }
         for pair in inner_links.chunks_exact(2) {
             // The segment did not cross this edge, so it may be a segment: it stays one.
             let (x, y, segment) = (pair[0].0, pair[1].0, pair[0].2);
-            mesh.twins[x as usize] = y;
-            mesh.twins[y as usize] = x;
-            mesh.segment[x as usize] = segment;
-            mesh.segment[y as usize] = segment;
+            mesh.link(x, y);
+            mesh.set_segment(x, segment);
         }
-        mesh.set_segment(3 * slots[0], id);
+        mesh.set_segment(slots[0].edge(0), id);
         true
     }
 
@@ -215,17 +215,17 @@ impl<P: Predicates> Constrainer<P> {
     /// edge as segment `id`, then restores the constrained Delaunay property around the new edges.
     pub(super) fn remove_crossings(
         &mut self,
-        a: u32,
-        b: u32,
-        crossed: Vec<(u32, u32)>,
+        a: VertexId,
+        b: VertexId,
+        crossed: Vec<(VertexId, VertexId)>,
         id: u32,
     ) -> Result<(), Error> {
         let lost = |what: &str| Error::Internal(format!("segment recovery by flips: {what}"));
-        let mut queue: VecDeque<(u32, u32)> = crossed.into();
+        let mut queue: VecDeque<(VertexId, VertexId)> = crossed.into();
         let mut new_edges = Vec::new();
         let mut stalls = 0usize;
         while let Some((u, v)) = queue.pop_front() {
-            let mesh = &self.inserter.mesh;
+            let mesh = self.inserter.mesh();
             let e = mesh
                 .find_edge(u, v)
                 .ok_or_else(|| lost("a crossing edge is gone"))?;
@@ -242,7 +242,7 @@ impl<P: Predicates> Constrainer<P> {
                 continue;
             }
             stalls = 0;
-            self.inserter.mesh.flip(e);
+            self.inserter.mesh_mut().flip(e);
             let crosses = {
                 let (op, oq) = (self.orient(a, b, p), self.orient(a, b, q));
                 p != a && p != b && q != a && q != b && op * oq < 0.0
@@ -255,10 +255,10 @@ impl<P: Predicates> Constrainer<P> {
         }
         let e = self
             .inserter
-            .mesh
+            .mesh()
             .find_edge(a, b)
             .ok_or_else(|| lost("the segment is not an edge afterwards"))?;
-        self.inserter.mesh.set_segment(e, id);
+        self.inserter.mesh_mut().set_segment(e, id);
         self.restore_delaunay(new_edges);
         Ok(())
     }

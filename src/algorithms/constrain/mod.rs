@@ -24,7 +24,9 @@ use std::collections::{HashSet, VecDeque};
 use crate::algorithms::delaunay::{Inserter, Location};
 use crate::error::Error;
 use crate::geometry::{Point, Predicates};
-use crate::mesh::{next, prev, triangle_of, Mesh, GHOST, NONE};
+use crate::mesh::{
+    EdgeId, Ghosts, Lawson, LineStep, Mesh, Quad, TriangleId, VertexId, GHOST, NONE,
+};
 
 // The parts: this file inserts segments (walks, crossings, vertices on segments, hull segments,
 // point location for holes and regions); `cavity` recovers a segment across crossed triangles;
@@ -40,9 +42,9 @@ use cavity::{Chain, Polygon};
 /// parameter `t` (for interpolating attributes).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Crossing {
-    pub vertex: u32,
-    pub from: u32,
-    pub to: u32,
+    pub vertex: VertexId,
+    pub from: VertexId,
+    pub to: VertexId,
     pub t: f64,
 }
 
@@ -52,35 +54,36 @@ const SNAP_RELATIVE: f64 = 1e-12;
 /// Where two segments cross.
 enum CrossingPoint {
     /// A new vertex.
-    New(u32),
+    New(VertexId),
     /// An endpoint of the crossed segment (the crossing rounds onto it).
-    Existing(u32),
+    Existing(VertexId),
     /// Another vertex, which the crossed segment passes through in floating point.
-    ThroughVertex(u32),
+    ThroughVertex(VertexId),
 }
 
 /// What the walk from a segment's endpoint finds.
 enum Walk {
     /// The edge `e` from the start runs along the segment to a vertex on it (possibly the end).
-    Along(u32),
+    Along(EdgeId),
     /// The segment crosses the edges in [`Constrainer::crossed`] and then reaches `stop`, a
     /// vertex on it (possibly the end).
-    Crosses(u32),
+    Crosses(VertexId),
     /// The segment crosses the segment edge `e` (after the crossings before it).
-    HitsSegment(u32),
+    HitsSegment(EdgeId),
     /// The edge from the start to the end passed by this vertex within rounding: it was flipped
     /// away, and the segment goes through the vertex.
-    Through(u32),
+    Through(VertexId),
 }
 
 #[derive(Clone)]
 pub struct Constrainer<P: Predicates> {
-    pub inserter: Inserter<P>,
+    inserter: Inserter<P>,
     /// Vertices created at crossings, in creation order.
     pub crossings: Vec<Crossing>,
     /// The marker of each segment id (the ids that [`Mesh::segment`](crate::mesh::Mesh) holds).
     pub markers: Vec<i32>,
-    /// The endpoints of each segment id, as given (before crossings split it).
+    /// The endpoints of each segment id, as given (before crossings split it); raw vertex ids
+    /// (or `NONE`s), as refinement reads them.
     pub ends: Vec<(u32, u32)>,
     /// `s`: recover segments by inserting midpoints (a conforming triangulation) instead of
     /// flipping crossing edges away.
@@ -97,36 +100,36 @@ pub struct Constrainer<P: Predicates> {
 #[derive(Clone, Default)]
 struct Scratch {
     /// Pieces of the segment still to insert: (from, to, id).
-    work: Vec<(u32, u32, u32)>,
+    work: Vec<(VertexId, VertexId, u32)>,
     /// The half-edges the walk crossed, in order; each runs from the right of the segment to its
     /// left, in the triangle before the crossing.
-    crossed: Vec<u32>,
+    crossed: Vec<EdgeId>,
     /// The cavity's two polygons: [`Polygon::Left`] runs from the segment's start to its end
     /// along the vertices left of it, [`Polygon::Right`] from the end back to the start along
     /// those right of it.
     left: Chain,
     right: Chain,
     /// The triangle slots of the cavity, reused by its new triangles.
-    slots: Vec<u32>,
+    slots: Vec<TriangleId>,
     /// Sub-polygons still to triangulate: (polygon, first, last, half-edge to join to the base).
-    tasks: Vec<(Polygon, u32, u32, u32)>,
+    tasks: Vec<(Polygon, u32, u32, EdgeId)>,
     /// The new triangles: corners (base origin, base destination, apex) and the half-edge their
     /// base is joined to (`NONE` for the first one, whose base is the segment).
-    triangles: Vec<([u32; 3], u32)>,
+    triangles: Vec<([VertexId; 3], EdgeId)>,
     /// Pairs (new half-edge, untouched half-edge outside the cavity) to join as twins.
-    outer_links: Vec<(u32, u32)>,
+    outer_links: Vec<(EdgeId, EdgeId)>,
     /// The cavity's slots, sorted (to tell whether a half-edge lies in the cavity).
-    sorted_slots: Vec<u32>,
+    sorted_slots: Vec<TriangleId>,
     /// Triples (new half-edge, old half-edge inside the cavity, its segment id) for boundary
     /// edges with the cavity on both sides; see [`Constrainer::retriangulate_cavity`].
-    inner_links: Vec<(u32, u32, u32)>,
+    inner_links: Vec<(EdgeId, EdgeId, u32)>,
 }
 
 impl<P: Predicates> Constrainer<P> {
     /// Prepares `inserter`'s mesh (a Delaunay triangulation with ghosts) for segments.
     pub fn new(mut inserter: Inserter<P>) -> Self {
-        inserter.mesh.track_vertex_edges();
-        inserter.mesh.track_segments();
+        inserter.mesh_mut().track_vertex_edges();
+        inserter.mesh_mut().track_segments();
         Constrainer {
             inserter,
             crossings: Vec::new(),
@@ -138,11 +141,55 @@ impl<P: Predicates> Constrainer<P> {
         }
     }
 
-    fn pt(&self, v: u32) -> Point {
-        self.inserter.mesh.point(v)
+    /// The mesh.
+    #[inline(always)]
+    pub fn mesh(&self) -> &Mesh {
+        self.inserter.mesh()
     }
 
-    fn orient(&self, a: u32, b: u32, c: u32) -> f64 {
+    /// The mesh, for its tags (the domain) and segment marks; the topology changes only
+    /// through the constrainer's operations.
+    #[inline(always)]
+    pub fn mesh_mut(&mut self) -> &mut Mesh {
+        self.inserter.mesh_mut()
+    }
+
+    /// The mesh, consuming the constrainer.
+    pub fn into_mesh(self) -> Mesh {
+        self.inserter.into_mesh()
+    }
+
+    /// Adds a vertex at `p`, not yet connected (see [`Self::insert_at`]).
+    pub fn add_point(&mut self, p: Point) -> VertexId {
+        self.inserter.mesh_mut().add_point(p)
+    }
+
+    /// Locates `p` by a walk from triangle `start` (see [`Inserter::locate`]).
+    pub fn locate(&mut self, p: Point, start: TriangleId) -> Location {
+        self.inserter.locate(p, start)
+    }
+
+    /// Inserts vertex `v` at a known location with Lawson flips that keep segments (see
+    /// [`Inserter::insert_at`]); `Err(u)` if it lies on vertex `u`.
+    pub fn insert_at(&mut self, v: VertexId, location: Location) -> Result<(), VertexId> {
+        self.inserter.insert_at(v, location)
+    }
+
+    /// Keeps only the triangles for which `keep` holds (see [`Mesh::retain_triangles`]).
+    pub fn retain_triangles(&mut self, keep: impl Fn(TriangleId) -> bool) {
+        self.inserter.retain_triangles(keep);
+    }
+
+    /// The tracked outgoing half-edge of `v` ([`EdgeId::NONE`] for a vertex in no triangle).
+    fn vertex_edge(&self, v: VertexId) -> EdgeId {
+        self.inserter.mesh().vertex_edge(v).unwrap_or(EdgeId::NONE)
+    }
+
+    fn pt(&self, v: VertexId) -> Point {
+        self.inserter.mesh().point(v)
+    }
+
+    fn orient(&self, a: VertexId, b: VertexId, c: VertexId) -> f64 {
         P::orient2d(self.pt(a), self.pt(b), self.pt(c))
     }
 
@@ -157,7 +204,7 @@ impl<P: Predicates> Constrainer<P> {
     /// Inserts the segment from vertex `a` to vertex `b` with id `id` (from
     /// [`Self::new_segment_id`]). Both must be vertices of the triangulation. An `Err` is an
     /// internal invariant failure (a bug), reported instead of a panic.
-    pub fn insert_segment(&mut self, a: u32, b: u32, id: u32) -> Result<(), Error> {
+    pub fn insert_segment(&mut self, a: VertexId, b: VertexId, id: u32) -> Result<(), Error> {
         let mut work = std::mem::take(&mut self.scratch.work);
         work.clear();
         work.push((a, b, id));
@@ -170,7 +217,7 @@ impl<P: Predicates> Constrainer<P> {
             }
             match self.walk(a, b)? {
                 Walk::Along(e) => {
-                    let mesh = &mut self.inserter.mesh;
+                    let mesh = self.inserter.mesh_mut();
                     let c = mesh.dest(e);
                     // Where segments overlap, a later non-zero marker replaces a zero one, as in
                     // Triangle.
@@ -204,7 +251,7 @@ impl<P: Predicates> Constrainer<P> {
                         }
                         None => {
                             if !self.retriangulate_cavity(a, stop, id) {
-                                let mesh = &self.inserter.mesh;
+                                let mesh = self.inserter.mesh();
                                 let crossed = self
                                     .scratch
                                     .crossed
@@ -225,7 +272,7 @@ impl<P: Predicates> Constrainer<P> {
                         continue;
                     }
                     // Read the crossed segment now: making the crossing vertex may rewrite `e`.
-                    let mesh = &self.inserter.mesh;
+                    let mesh = self.inserter.mesh();
                     let (u, v, other) = (mesh.origin(e), mesh.dest(e), mesh.segment_of(e));
                     if !self.crossed_pairs.insert((id.min(other), id.max(other))) {
                         // They crossed already: nearly collinear. Rather than a cascade of new
@@ -249,8 +296,8 @@ impl<P: Predicates> Constrainer<P> {
                         CrossingPoint::ThroughVertex(w) => {
                             // The crossed segment passes through `w` (in floating point): it is
                             // re-inserted as two pieces meeting at `w`, then this one is retried.
-                            if let Some(crossed) = self.inserter.mesh.find_edge(u, v) {
-                                self.inserter.mesh.clear_segment(crossed);
+                            if let Some(crossed) = self.inserter.mesh().find_edge(u, v) {
+                                self.inserter.mesh_mut().clear_segment(crossed);
                                 self.restore_delaunay(vec![(u, v)]);
                             }
                             work.push((a, b, id));
@@ -268,38 +315,31 @@ impl<P: Predicates> Constrainer<P> {
     /// After inserting a vertex at a rounded position (a crossing, a midpoint), which may lie
     /// off the edge it split by an ulp: the edges around it are made locally Delaunay too (Lawson
     /// checks only the edges opposite a new vertex, which suffices only for exact positions).
-    pub fn settle(&mut self, vertex: u32) {
-        let mesh = &self.inserter.mesh;
-        let start = mesh.vertex_edge[vertex as usize];
-        let mut e = start;
-        let mut edges = Vec::new();
-        loop {
-            let w = mesh.dest(e);
-            if w != GHOST {
-                edges.push((vertex, w));
-            }
-            e = mesh.twin(prev(e));
-            if e == start {
-                break;
-            }
-        }
+    pub fn settle(&mut self, vertex: VertexId) {
+        let mesh = self.inserter.mesh();
+        let edges = mesh
+            .star(vertex)
+            .map(|e| mesh.dest(e))
+            .filter(|&w| w != GHOST)
+            .map(|w| (vertex, w))
+            .collect();
         self.restore_delaunay(edges);
     }
 
     /// `s`: inserts the midpoint of `a`–`b` as a vertex (recorded with the crossings, for its
     /// attributes); `None` when it cannot be told apart from the ends.
-    fn insert_midpoint(&mut self, a: u32, b: u32) -> Option<u32> {
+    fn insert_midpoint(&mut self, a: VertexId, b: VertexId) -> Option<VertexId> {
         let (pa, pb) = (self.pt(a), self.pt(b));
         let m = [0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])];
         if m == pa || m == pb {
             return None;
         }
-        let start = triangle_of(self.inserter.mesh.vertex_edge[a as usize]);
+        let start = self.vertex_edge(a).triangle();
         let location = self.inserter.locate(m, start);
         if let Location::OnVertex(_) = location {
             return None;
         }
-        let vertex = self.inserter.mesh.add_point(m);
+        let vertex = self.inserter.mesh_mut().add_point(m);
         let _ = self.inserter.insert_at(vertex, location);
         self.settle(vertex);
         self.crossings.push(Crossing {
@@ -312,75 +352,62 @@ impl<P: Predicates> Constrainer<P> {
     }
 
     /// Walks from `a` toward `b`; the edges crossed are left in `self.scratch.crossed`.
-    fn walk(&mut self, a: u32, b: u32) -> Result<Walk, Error> {
+    fn walk(&mut self, a: VertexId, b: VertexId) -> Result<Walk, Error> {
         self.scratch.crossed.clear();
-        let mesh = &self.inserter.mesh;
+        let mesh = self.inserter.mesh();
         let (pa, pb) = (self.pt(a), self.pt(b));
-        let start = mesh.vertex_edge[a as usize];
         // Often the segment is an edge already (a polygon's sides between close vertices): look
         // for `b` among the neighbours first, which needs no point and no predicate. (Then no
         // other neighbour lies on the ray to `b` and no wedge strictly contains it, so the search
         // below would find the same edge.)
-        let mut e = start;
-        loop {
-            if mesh.dest(e) == b {
-                let beside = |pu: Point, pv: Point, pw: Point| {
-                    on_line(P::orient2d(pu, pv, pw), pu, pv)
-                        && along(pu, pw, pv)
-                        && before(pu, pw, pv)
-                };
-                return Ok(match self.flip_edge_onto_vertex(e, beside) {
-                    Some(w) => Walk::Through(w),
-                    None => Walk::Along(e),
-                });
-            }
-            e = mesh.twin(prev(e));
-            if e == start {
-                break;
-            }
+        if let Some(e) = mesh.star(a).find(|&e| mesh.dest(e) == b) {
+            let beside = |pu: Point, pv: Point, pw: Point| {
+                on_line(P::orient2d(pu, pv, pw), pu, pv) && along(pu, pw, pv) && before(pu, pw, pv)
+            };
+            return Ok(match self.flip_edge_onto_vertex(e, beside) {
+                Some(w) => Walk::Through(w),
+                None => Walk::Along(e),
+            });
         }
         // Find the triangle (a, x, y) around `a` whose wedge holds the direction to `b`. Each
         // wedge's `y` is the next one's `x`: its orientation is carried over.
-        let (right, left);
         let mut carried = (GHOST, 0.0);
-        loop {
+        let mut wedge = None;
+        for e in mesh.star(a) {
             let (x, y) = (mesh.dest(e), mesh.apex(e));
-            if x != GHOST {
-                let ox = if carried.0 == x {
-                    carried.1
-                } else {
-                    P::orient2d(pa, self.pt(x), pb)
-                };
-                if on_line(ox, pa, pb) && along(pa, self.pt(x), pb) && before(pa, self.pt(x), pb) {
-                    return Ok(Walk::Along(e));
-                }
-                if y != GHOST && ox > 0.0 {
-                    let py = self.pt(y);
-                    let oy = P::orient2d(pa, py, pb);
-                    // A `y` within rounding of the segment (an ulp to the right of it) is not the
-                    // left side of a wedge to cross: the next turn takes it as `x` and walks
-                    // along the edge to it.
-                    let y_on_segment =
-                        on_line(oy, pa, pb) && along(pa, py, pb) && before(pa, py, pb);
-                    if oy < 0.0 && !y_on_segment {
-                        right = x;
-                        left = y;
-                        break;
-                    }
-                    carried = (y, oy);
-                }
+            if x == GHOST {
+                continue;
             }
-            e = mesh.twin(prev(e));
-            if e == start {
-                return Err(Error::Internal(format!(
-                    "segment insertion: no triangle around vertex {a} faces vertex {b}"
-                )));
+            let ox = if carried.0 == x {
+                carried.1
+            } else {
+                P::orient2d(pa, self.pt(x), pb)
+            };
+            if on_line(ox, pa, pb) && along(pa, self.pt(x), pb) && before(pa, self.pt(x), pb) {
+                return Ok(Walk::Along(e));
+            }
+            if y != GHOST && ox > 0.0 {
+                let py = self.pt(y);
+                let oy = P::orient2d(pa, py, pb);
+                // A `y` within rounding of the segment (an ulp to the right of it) is not the
+                // left side of a wedge to cross: the next turn takes it as `x` and walks along
+                // the edge to it.
+                let y_on_segment = on_line(oy, pa, pb) && along(pa, py, pb) && before(pa, py, pb);
+                if oy < 0.0 && !y_on_segment {
+                    wedge = Some(e);
+                    break;
+                }
+                carried = (y, oy);
             }
         }
+        let Some(e) = wedge else {
+            return Err(Error::Internal(format!(
+                "segment insertion: no triangle around vertex {a} faces vertex {b}"
+            )));
+        };
         // Cross edges until a vertex on the segment is reached.
-        debug_assert!(mesh.origin(next(e)) == right && mesh.dest(next(e)) == left);
         Ok(
-            match cross_edges::<P>(mesh, pa, pb, next(e), true, &mut self.scratch.crossed) {
+            match cross_edges::<P>(mesh, pa, pb, e.next(), true, &mut self.scratch.crossed) {
                 Ok(z) => Walk::Crosses(z),
                 Err(h) => Walk::HitsSegment(h),
             },
@@ -394,13 +421,13 @@ impl<P: Predicates> Constrainer<P> {
     /// vertex. Not when the edge is on the hull or the flip would not be valid.
     fn flip_edge_onto_vertex(
         &mut self,
-        e: u32,
+        e: EdgeId,
         on_edge: impl Fn(Point, Point, Point) -> bool,
-    ) -> Option<u32> {
-        let mesh = &self.inserter.mesh;
+    ) -> Option<VertexId> {
+        let mesh = self.inserter.mesh();
         for h in [e, mesh.twin(e)] {
             let f = mesh.twin(h);
-            if mesh.is_ghost(triangle_of(h)) || mesh.is_ghost(triangle_of(f)) {
+            if mesh.is_ghost(h.triangle()) || mesh.is_ghost(f.triangle()) {
                 return None;
             }
             let (u, v, w, z) = (mesh.origin(h), mesh.dest(h), mesh.apex(h), mesh.apex(f));
@@ -413,7 +440,7 @@ impl<P: Predicates> Constrainer<P> {
                 continue;
             }
             let id = mesh.segment_of(h);
-            let mesh = &mut self.inserter.mesh;
+            let mesh = self.inserter.mesh_mut();
             mesh.flip(h);
             if id != NONE {
                 for (x, y) in [(u, w), (w, v)] {
@@ -430,10 +457,15 @@ impl<P: Predicates> Constrainer<P> {
 
     /// The first vertex that lies exactly on the segment from `a` to `b` beyond the segment edge
     /// `h` it crosses (right → left), if that is not `b`.
-    fn vertex_on_segment_beyond(&mut self, a: u32, b: u32, h: u32) -> Option<u32> {
+    fn vertex_on_segment_beyond(
+        &mut self,
+        a: VertexId,
+        b: VertexId,
+        h: EdgeId,
+    ) -> Option<VertexId> {
         let (pa, pb) = (self.pt(a), self.pt(b));
         let z = cross_edges::<P>(
-            &self.inserter.mesh,
+            self.inserter.mesh(),
             pa,
             pb,
             h,
@@ -445,8 +477,8 @@ impl<P: Predicates> Constrainer<P> {
     }
 
     /// Finds or makes the vertex where the segment from `a` to `b` crosses the segment edge `e`.
-    fn split_at_crossing(&mut self, a: u32, b: u32, e: u32) -> CrossingPoint {
-        let mesh = &self.inserter.mesh;
+    fn split_at_crossing(&mut self, a: VertexId, b: VertexId, e: EdgeId) -> CrossingPoint {
+        let mesh = self.inserter.mesh();
         let (u, v) = (mesh.origin(e), mesh.dest(e));
         let (pu, pv) = (self.pt(u), self.pt(v));
         // Parameter along u → v of the crossing with the line a → b.
@@ -481,11 +513,11 @@ impl<P: Predicates> Constrainer<P> {
             // The rounded crossing is not inside the crossed edge's quadrilateral (next to a
             // sliver left by an earlier bent segment): insert it where it is, and let both
             // segments bend through it.
-            let start = triangle_of(e);
+            let start = e.triangle();
             return match self.inserter.locate(p, start) {
                 Location::OnVertex(w) => CrossingPoint::ThroughVertex(w),
                 location => {
-                    let vertex = self.inserter.mesh.add_point(p);
+                    let vertex = self.inserter.mesh_mut().add_point(p);
                     let _ = self.inserter.insert_at(vertex, location);
                     self.settle(vertex);
                     self.crossings.push(Crossing {
@@ -498,7 +530,7 @@ impl<P: Predicates> Constrainer<P> {
                 }
             };
         }
-        let vertex = self.inserter.mesh.add_point(p);
+        let vertex = self.inserter.mesh_mut().add_point(p);
         let _ = self.inserter.insert_at(vertex, Location::OnEdge(e));
         self.settle(vertex);
         self.crossings.push(Crossing {
@@ -511,58 +543,43 @@ impl<P: Predicates> Constrainer<P> {
     }
 
     /// Lawson flips from the given edges until every non-segment edge is locally Delaunay.
-    pub fn restore_delaunay(&mut self, edges: Vec<(u32, u32)>) {
+    pub fn restore_delaunay(&mut self, edges: Vec<(VertexId, VertexId)>) {
         let mut stack = edges;
-        while let Some((u, v)) = stack.pop() {
-            let mesh = &self.inserter.mesh;
-            let Some(e) = mesh.find_edge(u, v) else {
-                continue;
-            };
-            if mesh.is_segment(e) {
-                continue;
-            }
-            let f = mesh.twin(e);
-            let (p, q) = (mesh.apex(e), mesh.apex(f));
-            if p == GHOST || q == GHOST {
-                continue;
-            }
-            if P::incircle(self.pt(u), self.pt(v), self.pt(p), self.pt(q)) > 0.0 {
-                self.inserter.mesh.flip(e);
-                stack.extend_from_slice(&[(u, q), (q, v), (v, p), (p, u)]);
-            }
-        }
+        self.inserter
+            .mesh_mut()
+            .legalize::<P, _>(&mut stack, &mut BetweenSegments);
     }
 
     /// Marks every hull edge that is not a segment yet as a segment with marker `marker` (the `c`
     /// switch, the boundary of a mesh being refined, and refinement of a point set). Each is a
     /// segment of its own, ending at its two vertices.
     pub fn mark_hull(&mut self, marker: i32) {
-        for e in 0..self.inserter.mesh.corners.len() as u32 {
-            let mesh = &self.inserter.mesh;
+        for e in self.inserter.mesh().edges() {
+            let mesh = self.inserter.mesh();
             let (a, b) = (mesh.origin(e), mesh.dest(e));
             if a != GHOST
                 && b != GHOST
                 && mesh.apex(mesh.twin(e)) == GHOST
                 && mesh.segment_of(e) == NONE
             {
-                let id = self.new_segment_id(marker, a, b);
-                self.inserter.mesh.set_segment(e, id);
+                let id = self.new_segment_id(marker, a.raw(), b.raw());
+                self.inserter.mesh_mut().set_segment(e, id);
             }
         }
     }
 
     /// The triangle containing `p`, if `p` lies in the triangulated area.
-    pub fn triangle_at(&mut self, p: Point) -> Option<u32> {
+    pub fn triangle_at(&mut self, p: Point) -> Option<TriangleId> {
         let start = self.inserter.last_triangle();
         match self.inserter.locate(p, start) {
             Location::InTriangle(t) => Some(t),
-            Location::OnEdge(e) => Some(triangle_of(e)),
-            Location::OnVertex(v) => {
-                let e = self.inserter.mesh.vertex_edge[v as usize];
-                (e != NONE)
-                    .then(|| triangle_of(e))
-                    .filter(|&t| !self.inserter.mesh.is_ghost(t))
-            }
+            Location::OnEdge(e) => Some(e.triangle()),
+            Location::OnVertex(v) => self
+                .inserter
+                .mesh()
+                .vertex_edge(v)
+                .map(EdgeId::triangle)
+                .filter(|&t| !self.inserter.mesh().is_ghost(t)),
             Location::Outside(_) => None,
         }
     }
@@ -576,23 +593,49 @@ fn cross_edges<P: Predicates>(
     mesh: &Mesh,
     pa: Point,
     pb: Point,
-    mut h: u32,
+    h: EdgeId,
     stop_at_segments: bool,
-    crossed: &mut Vec<u32>,
-) -> Result<u32, u32> {
-    loop {
-        if stop_at_segments && mesh.is_segment(h) {
-            return Err(h);
+    crossed: &mut Vec<EdgeId>,
+) -> Result<VertexId, EdgeId> {
+    for step in mesh.walk_line::<P, _>(pa, pb, h, |o| on_line(o, pa, pb)) {
+        match step {
+            LineStep::Cross(h) if stop_at_segments && mesh.is_segment(h) => return Err(h),
+            LineStep::Cross(h) => crossed.push(h),
+            LineStep::Vertex(z) => return Ok(z),
         }
-        crossed.push(h);
-        let f = mesh.twin(h); // left → right in the next triangle
-        let z = mesh.apex(f);
-        let oz = P::orient2d(pa, pb, mesh.point(z));
-        if on_line(oz, pa, pb) {
-            return Ok(z);
-        }
-        // Right → z when z is left of the line, z → left otherwise.
-        h = if oz > 0.0 { next(f) } else { prev(f) };
+    }
+    unreachable!("a line walk ends at a vertex")
+}
+
+/// The Lawson policy of the constrained restore: the stack holds vertex pairs (flips renumber
+/// half-edges, an edge is found again by its ends), segments stay, edges next to the outside
+/// stay, and a flip stacks its quadrilateral's four outer edges (Lawson flips that never cross
+/// a segment give the constrained Delaunay triangulation: Chew 1989; Lee and Lin 1986).
+struct BetweenSegments;
+
+impl Lawson for BetweenSegments {
+    type Item = (VertexId, VertexId);
+
+    fn edge(&self, mesh: &Mesh, (u, v): (VertexId, VertexId)) -> Option<EdgeId> {
+        mesh.find_edge(u, v)
+    }
+
+    fn is_fixed(&self, mesh: &Mesh, e: EdgeId) -> bool {
+        mesh.is_segment(e)
+    }
+
+    fn ghosts(&self) -> Ghosts {
+        Ghosts::Fixed
+    }
+
+    fn after_flip(
+        &mut self,
+        quad: &Quad,
+        _flipped: [TriangleId; 2],
+        stack: &mut Vec<(VertexId, VertexId)>,
+    ) {
+        let Quad { a, b, c, d, .. } = *quad;
+        stack.extend_from_slice(&[(a, d), (d, b), (b, c), (c, a)]);
     }
 }
 

@@ -25,19 +25,20 @@ impl<P: Predicates> Constrainer<P> {
                 && !near(pu)
                 && !near(pv)
         };
-        let mesh = &self.inserter.mesh;
+        let mesh = self.mesh();
         // One half-edge per subsegment: the flip looks at the vertices on both sides.
-        let mut work: Vec<u32> = (0..3 * mesh.triangle_count())
+        let mut work: Vec<EdgeId> = mesh
+            .edges()
             .filter(|&e| mesh.is_segment(e) && e < mesh.twin(e))
             .collect();
         while let Some(e) = work.pop() {
-            let mesh = &self.inserter.mesh;
+            let mesh = self.mesh();
             let (u, v) = (mesh.origin(e), mesh.dest(e));
             if !mesh.is_segment(e) {
                 continue;
             }
             if let Some(w) = self.flip_edge_onto_vertex(e, on_segment) {
-                let mesh = &self.inserter.mesh;
+                let mesh = self.mesh();
                 work.extend(
                     [(u, w), (w, v)]
                         .into_iter()

@@ -11,7 +11,7 @@ fn assert_constrained_delaunay(m: &Mesh, seed: u64) {
             Exact::orient2d(p, q, r) > 0.0,
             "seed {seed}: inverted triangle"
         );
-        for e in 3 * t..3 * t + 3 {
+        for e in t.edges() {
             let o = m.apex(m.twin(e));
             if o != GHOST && !m.is_segment(e) {
                 assert!(
@@ -52,20 +52,21 @@ fn random_segments_are_recovered() {
             let a = (splitmix64(&mut s) % n as u64) as u32;
             let b = (splitmix64(&mut s) % n as u64) as u32;
             let id = cdt.new_segment_id(k % 3, a, b);
-            let m = &cdt.inserter.mesh;
-            let segments_before: Vec<(u32, u32)> = (0..m.corners.len() as u32)
+            let m = cdt.mesh().raw();
+            let segments_before: Vec<(u32, u32)> = (0..m.edge_count())
                 .filter(|&e| m.is_segment(e))
                 .map(|e| (m.origin(e), m.dest(e)))
                 .collect();
-            cdt.insert_segment(a, b, id).unwrap();
-            let m = &cdt.inserter.mesh;
-            m.check_topology()
+            cdt.insert_segment(VertexId::new(a), VertexId::new(b), id)
+                .unwrap();
+            let (mesh, m) = (cdt.mesh(), cdt.mesh().raw());
+            mesh.check_topology()
                 .unwrap_or_else(|e| panic!("seed {seed}: {e}"));
             for &(u, v) in &segments_before {
                 // A segment edge stays one, unless the new segment crossed it through a
                 // vertex `w` (in floating point): then it was replaced by u-w and w-v.
                 if let Some(e) = m.find_edge(u, v) {
-                    let through_vertex = (0..m.points.len() as u32).any(|w| {
+                    let through_vertex = (0..m.points().len() as u32).any(|w| {
                         let is_segment = |x, y| m.find_edge(x, y).is_some_and(|f| m.is_segment(f));
                         w != u && w != v && is_segment(u, w) && is_segment(w, v)
                     });
@@ -78,10 +79,10 @@ fn random_segments_are_recovered() {
             if let Some(e) = m.find_edge(a, b) {
                 assert!(m.is_segment(e), "seed {seed}: segment {a}-{b} not marked");
             }
-            assert_constrained_delaunay(m, seed);
-            for e in 0..m.corners.len() as u32 {
-                if m.origin(e) != GHOST && m.dest(e) != GHOST {
-                    assert_ne!(m.vertex_edge[m.origin(e) as usize], NONE);
+            assert_constrained_delaunay(mesh, seed);
+            for e in 0..m.edge_count() {
+                if m.origin(e) != GHOST.raw() && m.dest(e) != GHOST.raw() {
+                    assert_ne!(m.vertex_edge(m.origin(e)), NONE);
                 }
             }
         }
@@ -118,10 +119,12 @@ fn star_polygon_in_random_orders() {
         for (k, &i) in order.iter().enumerate() {
             let (a, b) = (i, (i + 1) % n as u32);
             let id = cdt.new_segment_id(1, a, b);
-            cdt.insert_segment(a, b, id).unwrap();
+            cdt.insert_segment(VertexId::new(a), VertexId::new(b), id)
+                .unwrap();
             if k % 50 == 0 || k + 1 == n {
-                let m = &cdt.inserter.mesh;
-                m.check_topology()
+                let m = cdt.mesh().raw();
+                cdt.mesh()
+                    .check_topology()
                     .unwrap_or_else(|e| panic!("seed {seed}: {e}"));
                 for &j in &order[..=k] {
                     let e = m.find_edge(j, (j + 1) % n as u32).expect("polygon edge");
@@ -132,9 +135,9 @@ fn star_polygon_in_random_orders() {
                 }
             }
         }
-        let m = &cdt.inserter.mesh;
+        let m = cdt.mesh();
         assert_eq!(
-            m.corners.len(),
+            m.edge_count() as usize,
             tri_corner_count(n, m),
             "seed {seed}: no new vertices expected"
         );
@@ -144,6 +147,6 @@ fn star_polygon_in_random_orders() {
 
 /// Corners of a triangulation of `n` vertices with ghosts: 3 (2n − 2) half-edges, hull or not.
 fn tri_corner_count(n: usize, m: &crate::mesh::Mesh) -> usize {
-    assert_eq!(m.points.len(), n);
+    assert_eq!(m.points().len(), n);
     3 * (2 * n - 2)
 }

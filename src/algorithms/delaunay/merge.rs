@@ -16,7 +16,7 @@
 use super::{triangulate_in_order, Triangulation};
 use crate::algorithms::delaunay::order::multiscale_order;
 use crate::geometry::{Point, Predicates};
-use crate::mesh::{triangle_of, Mesh, GHOST, NONE};
+use crate::mesh::{EdgeId, Ghosts, Lawson, Mesh, Quad, TriangleId, VertexId, GHOST, NONE};
 
 /// Below this many points one thread is faster than two.
 pub const PARALLEL_THRESHOLD: usize = 20_000;
@@ -38,11 +38,7 @@ fn triangulate_half<P: Predicates>(points: &[Point], ids: &[u32], capacity: usiz
     if mesh.triangle_count() == 0 {
         return None;
     }
-    for c in mesh.corners.iter_mut() {
-        if *c != GHOST {
-            *c = global(*c);
-        }
-    }
+    mesh.rename_vertices(|v| VertexId::new(global(v.raw())));
     let duplicate_of = duplicates
         .iter()
         .enumerate()
@@ -103,21 +99,15 @@ pub fn triangulate_two_halves<P: Predicates>(
         duplicate_of[v as usize] = u;
     }
     // One mesh: the right half's triangles after the left half's.
-    let offset = 3 * l.mesh.triangle_count();
+    let right_start = TriangleId::new(l.mesh.triangle_count());
     let mut mesh = l.mesh;
-    mesh.points = points;
-    drop(std::mem::take(&mut r.mesh.points));
-    let right_corners = std::mem::take(&mut r.mesh.corners);
-    let right_twins = std::mem::take(&mut r.mesh.twins);
-    mesh.corners.extend_from_slice(&right_corners);
-    drop(right_corners);
-    mesh.twins.extend(right_twins.iter().map(|&f| f + offset));
-    drop(right_twins);
+    drop(mesh.replace_points(points));
+    mesh.append(std::mem::take(&mut r.mesh));
     let mut merger = Merger::<P> {
         mesh,
         _p: Default::default(),
     };
-    merger.merge(offset / 3);
+    merger.merge(right_start);
     let mut triangulation = Triangulation {
         mesh: merger.mesh,
         duplicate_of,
@@ -130,7 +120,7 @@ pub fn triangulate_two_halves<P: Predicates>(
 struct Hull {
     /// Counter-clockwise successor and predecessor of each hull vertex (NONE elsewhere), and the
     /// ghost triangle of the hull edge leaving (`ghost_out`) and entering (`ghost_in`) it.
-    succ: std::collections::HashMap<u32, (u32, u32, u32, u32)>,
+    succ: std::collections::HashMap<VertexId, (VertexId, VertexId, TriangleId, TriangleId)>,
 }
 
 impl Hull {
@@ -141,7 +131,7 @@ impl Hull {
         let mut succ = std::collections::HashMap::new();
         let slots = triangles.len();
         let first = triangles
-            .into_iter()
+            .map(TriangleId::new)
             .find(|&t| ghost_edge(mesh, t).is_some())
             .expect("a triangulated half has a hull");
         let mut ghost = first;
@@ -150,42 +140,49 @@ impl Hull {
             let k = c.iter().position(|&v| v == GHOST).expect("a ghost");
             // Hull edge y → x (the ghost's finite half-edge is x → y).
             let (x, y) = (c[(k + 1) % 3], c[(k + 2) % 3]);
-            let y_entry = succ.entry(y).or_insert((NONE, NONE, NONE, NONE));
+            let none = (
+                VertexId::NONE,
+                VertexId::NONE,
+                TriangleId::NONE,
+                TriangleId::NONE,
+            );
+            let y_entry = succ.entry(y).or_insert(none);
             (y_entry.0, y_entry.2) = (x, ghost);
-            let x_entry = succ.entry(x).or_insert((NONE, NONE, NONE, NONE));
+            let x_entry = succ.entry(x).or_insert(none);
             (x_entry.1, x_entry.3) = (y, ghost);
-            ghost = triangle_of(mesh.twin(3 * ghost + k as u32));
+            ghost = mesh.twin(ghost.edge(k as u32)).triangle();
             if ghost == first {
                 break;
             }
         }
         Hull { succ }
     }
-    fn succ(&self, v: u32) -> u32 {
+    fn succ(&self, v: VertexId) -> VertexId {
         self.succ[&v].0
     }
-    fn pred(&self, v: u32) -> u32 {
+    fn pred(&self, v: VertexId) -> VertexId {
         self.succ[&v].1
     }
-    fn ghost_out(&self, v: u32) -> u32 {
+    fn ghost_out(&self, v: VertexId) -> TriangleId {
         self.succ[&v].2
     }
-    fn ghost_in(&self, v: u32) -> u32 {
+    fn ghost_in(&self, v: VertexId) -> TriangleId {
         self.succ[&v].3
     }
 }
 
 /// For a ghost triangle `t`, its finite half-edge `x → y` (with the ghost vertex following `y`);
 /// the hull runs counter-clockwise from `y` to `x`. `None` for a real triangle.
-fn ghost_edge(mesh: &Mesh, t: u32) -> Option<(u32, u32)> {
+fn ghost_edge(mesh: &Mesh, t: TriangleId) -> Option<(VertexId, VertexId)> {
     let c = mesh.triangle(t);
     let k = c.iter().position(|&v| v == GHOST)?;
     Some((c[(k + 1) % 3], c[(k + 2) % 3]))
 }
 
 /// The half-edge of ghost triangle `t` that starts at `from` and ends at `to` (either may be GHOST).
-fn half_edge(mesh: &Mesh, t: u32, from: u32, to: u32) -> u32 {
-    (3 * t..3 * t + 3)
+fn half_edge(mesh: &Mesh, t: TriangleId, from: VertexId, to: VertexId) -> EdgeId {
+    t.edges()
+        .into_iter()
         .find(|&e| mesh.origin(e) == from && mesh.dest(e) == to)
         .expect("half-edge in ghost")
 }
@@ -196,16 +193,16 @@ struct Merger<P: Predicates> {
 }
 
 impl<P: Predicates> Merger<P> {
-    fn pt(&self, v: u32) -> Point {
+    fn pt(&self, v: VertexId) -> Point {
         self.mesh.point(v)
     }
 
-    fn orient(&self, a: u32, b: u32, c: u32) -> f64 {
+    fn orient(&self, a: VertexId, b: VertexId, c: VertexId) -> f64 {
         P::orient2d(self.pt(a), self.pt(b), self.pt(c))
     }
 
     /// Whether `s`, collinear with `a → b`, lies strictly between `a` and `b`.
-    fn strictly_between(&self, a: u32, b: u32, s: u32) -> bool {
+    fn strictly_between(&self, a: VertexId, b: VertexId, s: VertexId) -> bool {
         let (pa, pb, ps) = (self.pt(a), self.pt(b), self.pt(s));
         let d = [pb[0] - pa[0], pb[1] - pa[1]];
         let t = (ps[0] - pa[0]) * d[0] + (ps[1] - pa[1]) * d[1];
@@ -214,15 +211,15 @@ impl<P: Predicates> Merger<P> {
 
     /// Whether `s` is below the tangent candidate `a → b` (strictly right of it, or on it
     /// between the two), so that the tangent must move to `s`.
-    fn below(&self, a: u32, b: u32, s: u32) -> bool {
+    fn below(&self, a: VertexId, b: VertexId, s: VertexId) -> bool {
         let o = self.orient(a, b, s);
         o < 0.0 || (o == 0.0 && self.strictly_between(a, b, s))
     }
 
-    fn merge(&mut self, right_start: u32) {
+    fn merge(&mut self, right_start: TriangleId) {
         let total = self.mesh.triangle_count();
-        let left_hull = Hull::read(&self.mesh, 0..right_start);
-        let right_hull = Hull::read(&self.mesh, right_start..total);
+        let left_hull = Hull::read(&self.mesh, 0..right_start.raw());
+        let right_hull = Hull::read(&self.mesh, right_start.raw()..total);
         let lexi_max = |h: &Hull| {
             *h.succ
                 .keys()
@@ -269,8 +266,8 @@ impl<P: Predicates> Merger<P> {
 
         // The facing chains: left from lb counter-clockwise to lt, right from rb clockwise to rt.
         // For each chain edge, the real half-edge on the inner side, and the ghost slot to reuse.
-        let mut free_slots: Vec<u32> = Vec::new();
-        let mut left_chain: Vec<(u32, u32)> = Vec::new(); // (next vertex, real half-edge l→next)
+        let mut free_slots: Vec<TriangleId> = Vec::new();
+        let mut left_chain: Vec<(VertexId, EdgeId)> = Vec::new(); // (next vertex, real half-edge l→next)
         let mut v = lb;
         while v != lt {
             let g = left_hull.ghost_out(v);
@@ -280,7 +277,7 @@ impl<P: Predicates> Merger<P> {
             free_slots.push(g);
             v = w;
         }
-        let mut right_chain: Vec<(u32, u32)> = Vec::new(); // (next vertex, real half-edge next→r)
+        let mut right_chain: Vec<(VertexId, EdgeId)> = Vec::new(); // (next vertex, real half-edge next→r)
         let mut v = rb;
         while v != rt {
             let g = right_hull.ghost_in(v);
@@ -303,10 +300,10 @@ impl<P: Predicates> Merger<P> {
         // Zip. Each new triangle is (l, r, x) with slot 0 the base l→r.
         let (mut l, mut r) = (lb, rb);
         let (mut li, mut ri) = (0usize, 0usize);
-        let mut below_half = NONE; // the half-edge r→l (reversed base) of the previous triangle
+        let mut below_half = EdgeId::NONE; // the half-edge r→l (reversed base) of the previous triangle
         let bottom_ghost = self.mesh.add_triangle(rb, lb, GHOST);
         let mut slots = free_slots.into_iter();
-        let mut new_edges: Vec<u32> = Vec::new();
+        let mut new_edges: Vec<EdgeId> = Vec::new();
         while li < left_chain.len() || ri < right_chain.len() {
             let left_candidate = left_chain.get(li).map(|&(w, _)| w);
             let right_candidate = right_chain.get(ri).map(|&(w, _)| w);
@@ -324,86 +321,82 @@ impl<P: Predicates> Merger<P> {
                 (false, false) => left_candidate.is_none(),
             };
             let t = slots.next().expect("one ghost slot per chain edge");
-            let base = 3 * t;
+            let base = t.edge(0);
             if take_right {
                 let (w, real) = right_chain[ri];
                 ri += 1;
                 // (l, r, w): r→w replaces the right ghost; w→l is the next reversed base.
-                self.set(t, [l, r, w]);
-                self.link(base + 1, real);
+                self.mesh.set_corners(t, [l, r, w]);
+                self.mesh.link(t.edge(1), real);
                 self.link_base(base, below_half, bottom_ghost);
-                below_half = base + 2;
+                below_half = t.edge(2);
                 r = w;
             } else {
                 let (w, real) = left_chain[li];
                 li += 1;
                 // (l, r, w): w→l replaces the left ghost; r→w is the next reversed base.
-                self.set(t, [l, r, w]);
-                self.link(base + 2, real);
+                self.mesh.set_corners(t, [l, r, w]);
+                self.mesh.link(t.edge(2), real);
                 self.link_base(base, below_half, bottom_ghost);
-                below_half = base + 1;
+                below_half = t.edge(1);
                 l = w;
             }
-            new_edges.extend_from_slice(&[base, base + 1, base + 2]);
+            new_edges.extend_from_slice(&t.edges());
         }
         debug_assert!(l == lt && r == rt);
         let top_ghost = self.mesh.add_triangle(lt, rt, GHOST);
         // The bottom ghost (rb, lb, ∞): rb→lb, lb→∞, ∞→rb.
-        let bg = 3 * bottom_ghost;
-        if below_half == NONE {
+        let (bg, tg) = (bottom_ghost, top_ghost);
+        if below_half == EdgeId::NONE {
             // No chain edges at all: the tangents coincide and the two ghosts face each other.
-            self.link(bg, 3 * top_ghost);
+            self.mesh.link(bg.edge(0), tg.edge(0));
         }
-        self.link(bg + 1, inf_to_lb);
-        self.link(bg + 2, rb_to_inf);
+        self.mesh.link(bg.edge(1), inf_to_lb);
+        self.mesh.link(bg.edge(2), rb_to_inf);
         // The top ghost (lt, rt, ∞): lt→rt, rt→∞, ∞→lt.
-        let tg = 3 * top_ghost;
-        if below_half != NONE {
-            self.link(tg, below_half);
+        if below_half != EdgeId::NONE {
+            self.mesh.link(tg.edge(0), below_half);
         }
-        self.link(tg + 1, inf_to_rt);
-        self.link(tg + 2, lt_to_inf);
-        self.legalize(new_edges);
-    }
-
-    fn set(&mut self, t: u32, [a, b, c]: [u32; 3]) {
-        let i = 3 * t as usize;
-        self.mesh.corners[i..i + 3].copy_from_slice(&[a, b, c]);
-    }
-
-    fn link(&mut self, a: u32, b: u32) {
-        self.mesh.twins[a as usize] = b;
-        self.mesh.twins[b as usize] = a;
+        self.mesh.link(tg.edge(1), inf_to_rt);
+        self.mesh.link(tg.edge(2), lt_to_inf);
+        // Lawson's flips from the new edges until every edge is locally Delaunay; hull and
+        // ghost edges stay (the hull is already convex).
+        self.mesh
+            .legalize::<P, _>(&mut new_edges, &mut AcrossTheSeam);
     }
 
     /// Links the base l→r of a zipped triangle to the triangle below it, or to the bottom ghost.
-    fn link_base(&mut self, base: u32, below_half: u32, bottom_ghost: u32) {
-        if below_half == NONE {
-            self.link(base, 3 * bottom_ghost);
+    fn link_base(&mut self, base: EdgeId, below_half: EdgeId, bottom_ghost: TriangleId) {
+        if below_half == EdgeId::NONE {
+            self.mesh.link(base, bottom_ghost.edge(0));
         } else {
-            self.link(base, below_half);
+            self.mesh.link(base, below_half);
         }
     }
+}
 
-    /// Lawson's flip algorithm from the given half-edges until every edge is locally Delaunay.
-    fn legalize(&mut self, mut stack: Vec<u32>) {
-        while let Some(e) = stack.pop() {
-            let f = self.mesh.twin(e);
-            let (a, b, c, d) = (
-                self.mesh.origin(e),
-                self.mesh.dest(e),
-                self.mesh.apex(e),
-                self.mesh.apex(f),
-            );
-            if a == GHOST || b == GHOST || c == GHOST || d == GHOST {
-                continue; // hull and ghost edges stay: the hull is already convex
-            }
-            if P::incircle(self.pt(a), self.pt(b), self.pt(c), self.pt(d)) > 0.0 {
-                let [t1, t2] = self.mesh.flip(e);
-                // (a, d, c) and (d, b, c): their four outer edges may now be illegal.
-                stack.extend_from_slice(&[3 * t1, 3 * t1 + 2, 3 * t2, 3 * t2 + 1]);
-            }
-        }
+/// The Lawson policy of the merge: any stacked half-edge; edges with a ghost on either side stay;
+/// a flip stacks its quadrilateral's four outer edges, which it may have spoiled.
+struct AcrossTheSeam;
+
+impl Lawson for AcrossTheSeam {
+    type Item = EdgeId;
+
+    fn edge(&self, _mesh: &Mesh, e: EdgeId) -> Option<EdgeId> {
+        Some(e)
+    }
+
+    fn is_fixed(&self, _mesh: &Mesh, _e: EdgeId) -> bool {
+        false
+    }
+
+    fn ghosts(&self) -> Ghosts {
+        Ghosts::Fixed
+    }
+
+    fn after_flip(&mut self, _quad: &Quad, [t1, t2]: [TriangleId; 2], stack: &mut Vec<EdgeId>) {
+        // (a, d, c) and (d, b, c): their four outer edges may now be illegal.
+        stack.extend_from_slice(&[t1.edge(0), t1.edge(2), t2.edge(0), t2.edge(1)]);
     }
 }
 
@@ -428,14 +421,14 @@ mod tests {
         let m = &t.mesh;
         m.check_topology().unwrap();
         let mut ghosts = 0;
-        for tri in 0..m.triangle_count() {
+        for tri in m.triangles() {
             if m.is_ghost(tri) {
                 ghosts += 1;
                 continue;
             }
             let [a, b, c] = m.triangle(tri).map(|v| m.point(v));
             assert!(Exact::orient2d(a, b, c) > 0.0);
-            for e in 3 * tri..3 * tri + 3 {
+            for e in tri.edges() {
                 let q = m.apex(m.twin(e));
                 if q != GHOST {
                     assert!(Exact::incircle(a, b, c, m.point(q)) <= 0.0, "not Delaunay");

@@ -18,19 +18,19 @@ pub mod order;
 use bulk::triangulate_in_order;
 
 use crate::geometry::{Point, Predicates};
-use crate::mesh::{triangle_of, Mesh, GHOST, NONE};
+use crate::mesh::{EdgeId, Ghosts, Lawson, Mesh, Quad, TriangleId, VertexId, GHOST, NONE};
 
 /// Where a point lies in the current triangulation.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Location {
     /// Strictly inside real triangle `t`.
-    InTriangle(u32),
+    InTriangle(TriangleId),
     /// On the interior of the edge of half-edge `e`.
-    OnEdge(u32),
+    OnEdge(EdgeId),
     /// At the position of vertex `v`.
-    OnVertex(u32),
+    OnVertex(VertexId),
     /// Outside the hull, strictly beyond the hull edge of ghost triangle `t`.
-    Outside(u32),
+    Outside(TriangleId),
 }
 
 /// The location of `p` in triangle `t`, where a walk found it on no edge's far side and on the
@@ -38,11 +38,11 @@ pub enum Location {
 /// destination): inside, on the one edge, or at the vertex the two share.
 #[inline(always)]
 fn location_in_triangle(
-    t: u32,
-    zeros: &[u32],
+    t: TriangleId,
+    zeros: &[EdgeId],
     p: Point,
-    ends: impl Fn(u32) -> (u32, u32),
-    point: impl Fn(u32) -> Point,
+    ends: impl Fn(EdgeId) -> (VertexId, VertexId),
+    point: impl Fn(VertexId) -> Point,
 ) -> Location {
     match *zeros {
         [] => Location::InTriangle(t),
@@ -89,15 +89,11 @@ impl Triangulation {
         if first_copy.is_empty() {
             return;
         }
-        for c in self.mesh.corners.iter_mut() {
-            if let Some(&w) = first_copy.get(c) {
-                *c = w;
-            }
-        }
-        if !self.mesh.vertex_edge.is_empty() {
-            for (&u, &w) in &first_copy {
-                self.mesh.vertex_edge.swap(u as usize, w as usize);
-            }
+        self.mesh
+            .rename_vertices(|c| first_copy.get(&c.raw()).map_or(c, |&w| VertexId::new(w)));
+        for (&u, &w) in &first_copy {
+            self.mesh
+                .swap_vertex_edges(VertexId::new(u), VertexId::new(w));
         }
         for (v, u) in self.duplicate_of.iter_mut().enumerate() {
             if let Some(&w) = first_copy.get(u) {
@@ -113,11 +109,11 @@ impl Triangulation {
 /// The insertion engine: a mesh plus the state of the walk and of the flip stack.
 #[derive(Clone)]
 pub struct Inserter<P: Predicates> {
-    pub mesh: Mesh,
+    mesh: Mesh,
     /// A triangle incident to the last inserted vertex: where the next walk starts.
-    last: u32,
+    last: TriangleId,
     rng: u64,
-    stack: Vec<u32>,
+    stack: Vec<EdgeId>,
     _predicates: std::marker::PhantomData<P>,
 }
 
@@ -125,11 +121,28 @@ impl<P: Predicates> Inserter<P> {
     pub fn new(mesh: Mesh) -> Self {
         Inserter {
             mesh,
-            last: 0,
+            last: TriangleId::new(0),
             rng: 0x2545_F491_4F6C_DD1D,
             stack: Vec::with_capacity(64),
             _predicates: Default::default(),
         }
+    }
+
+    /// The mesh.
+    #[inline(always)]
+    pub fn mesh(&self) -> &Mesh {
+        &self.mesh
+    }
+
+    /// The mesh, for operations that keep it a valid triangulation (tracking, segments, tags).
+    #[inline(always)]
+    pub fn mesh_mut(&mut self) -> &mut Mesh {
+        &mut self.mesh
+    }
+
+    /// The mesh, consuming the inserter.
+    pub fn into_mesh(self) -> Mesh {
+        self.mesh
     }
 
     #[inline(always)]
@@ -143,35 +156,35 @@ impl<P: Predicates> Inserter<P> {
     }
 
     /// A real triangle near `t` (itself, or across the hull edge of a ghost).
-    fn real_near(&self, t: u32) -> u32 {
+    fn real_near(&self, t: TriangleId) -> TriangleId {
         if !self.mesh.is_ghost(t) {
             return t;
         }
-        for e in 3 * t..3 * t + 3 {
+        for e in t.edges() {
             if self.mesh.origin(e) != GHOST && self.mesh.dest(e) != GHOST {
-                return triangle_of(self.mesh.twin(e));
+                return self.mesh.twin(e).triangle();
             }
         }
         t
     }
 
     /// Keeps only the triangles for which `keep` holds (see [`Mesh::retain_triangles`]).
-    pub fn retain_triangles(&mut self, keep: impl Fn(u32) -> bool) {
+    pub fn retain_triangles(&mut self, keep: impl Fn(TriangleId) -> bool) {
         self.mesh.retain_triangles(keep);
-        self.last = 0;
+        self.last = TriangleId::new(0);
     }
 
     /// A triangle near the last insertion: a good start for a walk.
-    pub fn last_triangle(&self) -> u32 {
+    pub fn last_triangle(&self) -> TriangleId {
         self.last
     }
 
     /// Locates `p` by a visibility walk from `start` (any triangle). The walk is stochastic, so
     /// it terminates in any triangulation, constrained ones included.
-    pub fn locate(&mut self, p: Point, start: u32) -> Location {
+    pub fn locate(&mut self, p: Point, start: TriangleId) -> Location {
         let mesh_triangles = self.mesh.triangle_count();
         let mut t = self.real_near(start);
-        let mut entry = NONE; // the half-edge of `t` we came through (p is strictly left of it)
+        let mut entry = EdgeId::NONE; // the half-edge of `t` we came through (p is strictly left of it)
         let mut steps: u32 = 0;
         'walk: loop {
             steps += 1;
@@ -179,12 +192,11 @@ impl<P: Predicates> Inserter<P> {
                 // Only reachable with inexact predicates on hard input: fall back to a scan.
                 return self.locate_by_scan(p);
             }
-            let base = 3 * t;
             let offset = self.random_bit() % 3;
-            let mut zeros = [NONE; 2];
+            let mut zeros = [EdgeId::NONE; 2];
             let mut zero_count = 0;
             for k in 0..3 {
-                let e = base + (offset + k) % 3;
+                let e = t.edge((offset + k) % 3);
                 if e == entry {
                     continue;
                 }
@@ -192,7 +204,7 @@ impl<P: Predicates> Inserter<P> {
                 let o = P::orient2d(self.mesh.point(a), self.mesh.point(b), p);
                 if o < 0.0 {
                     let f = self.mesh.twin(e);
-                    let next_t = triangle_of(f);
+                    let next_t = f.triangle();
                     if self.mesh.apex(f) == GHOST {
                         return Location::Outside(next_t);
                     }
@@ -217,7 +229,7 @@ impl<P: Predicates> Inserter<P> {
     }
 
     fn locate_by_scan(&self, p: Point) -> Location {
-        for t in 0..self.mesh.triangle_count() {
+        for t in self.mesh.triangles() {
             if self.mesh.is_ghost(t) {
                 continue;
             }
@@ -234,23 +246,23 @@ impl<P: Predicates> Inserter<P> {
             ];
             if o.iter().all(|&x| x >= 0.0) {
                 return match o.iter().position(|&x| x == 0.0) {
-                    Some(i) => Location::OnEdge(3 * t + i as u32),
+                    Some(i) => Location::OnEdge(t.edge(i as u32)),
                     None => Location::InTriangle(t),
                 };
             }
         }
-        for t in 0..self.mesh.triangle_count() {
+        for t in self.mesh.triangles() {
             if self.mesh.is_ghost(t) && self.conflicts(t, p) {
                 return Location::Outside(t);
             }
         }
-        Location::InTriangle(self.real_near(0))
+        Location::InTriangle(self.real_near(TriangleId::new(0)))
     }
 
     /// Whether `p` lies strictly inside the circumcircle of triangle `t`; for a ghost, strictly
     /// beyond its hull edge.
     #[inline(always)]
-    fn conflicts(&self, t: u32, p: Point) -> bool {
+    fn conflicts(&self, t: TriangleId, p: Point) -> bool {
         let [a, b, c] = self.mesh.triangle(t);
         let m = &self.mesh;
         if a == GHOST {
@@ -266,55 +278,86 @@ impl<P: Predicates> Inserter<P> {
 
     /// Inserts vertex `v` (already in `mesh.points`), walking from the last insertion. Returns
     /// `Err(u)` if `v` lies on the existing vertex `u` (and was not inserted).
-    pub fn insert(&mut self, v: u32) -> Result<(), u32> {
+    pub fn insert(&mut self, v: VertexId) -> Result<(), VertexId> {
         let p = self.mesh.point(v);
         let location = self.locate(p, self.last);
         self.insert_at(v, location)
     }
 
     /// Inserts vertex `v` at a known location and restores the Delaunay property.
-    pub fn insert_at(&mut self, v: u32, location: Location) -> Result<(), u32> {
+    pub fn insert_at(&mut self, v: VertexId, location: Location) -> Result<(), VertexId> {
         let grows_hull = matches!(location, Location::Outside(_));
         match location {
             Location::OnVertex(u) => return Err(u),
             Location::InTriangle(t) | Location::Outside(t) => {
                 let ts = self.mesh.split_triangle(t, v);
-                self.stack.extend(ts.iter().map(|&t| 3 * t));
+                self.stack.extend(ts.iter().map(|&t| t.edge(0)));
             }
             Location::OnEdge(e) => {
                 let ts = self.mesh.split_edge(e, v);
-                self.stack.extend(ts.iter().map(|&t| 3 * t));
+                self.stack.extend(ts.iter().map(|&t| t.edge(0)));
             }
         }
-        self.legalize(v, grows_hull);
+        let mut stack = std::mem::take(&mut self.stack);
+        let mut star = AroundVertex::<true> {
+            ghosts: if grows_hull {
+                Ghosts::GrowHull
+            } else {
+                Ghosts::HullEdges
+            },
+            last: &mut self.last,
+        };
+        self.mesh.legalize::<P, _>(&mut stack, &mut star);
+        self.stack = stack;
         Ok(())
     }
+}
 
-    /// Lawson's flip loop: every half-edge on the stack is opposite `v` in a triangle that
-    /// contains `v`; flip it while `v` lies in the circumcircle of the triangle across it.
-    /// Segments are never flipped (the result is then constrained Delaunay, Chew 1989).
-    ///
-    /// An edge between two ghosts is flipped only when `v` was inserted outside the hull
-    /// (`grows_hull`): that is how the hull grows around it. A vertex inserted inside or on the
-    /// boundary never lies strictly beyond a boundary edge in exact terms, except when the
-    /// boundary is not convex (a carved domain, a mesh given with `r`) or when the vertex was
-    /// rounded onto a boundary edge; flipping there would wrap a triangle around the outside.
-    fn legalize(&mut self, v: u32, grows_hull: bool) {
-        let p = self.mesh.point(v);
-        while let Some(e) = self.stack.pop() {
-            let f = self.mesh.twin(e);
-            let ghost_edge = self.mesh.origin(e) == GHOST || self.mesh.dest(e) == GHOST;
-            if !self.mesh.is_segment(e)
-                && (grows_hull || !ghost_edge)
-                && self.conflicts(triangle_of(f), p)
-            {
-                let [t1, t2] = self.mesh.flip(e);
-                self.stack.push(3 * t1);
-                self.stack.push(3 * t2);
-            } else {
-                self.last = triangle_of(e);
-            }
-        }
+/// The Lawson policy of insertion (Lawson 1977; the flips that restore the Delaunay property
+/// around a new vertex): the stack holds the edges opposite the new vertex (slot 0 of its
+/// triangles, [`Mesh::split_triangle`] and [`Mesh::split_edge`] leave them there) and each flip
+/// stacks the two new ones; segments are never flipped (the result is then constrained
+/// Delaunay, Chew 1989); the triangle of each edge kept is where the next walk starts.
+/// `TRACKED` is false for the bulk build, whose mesh has no segments and no tracking.
+///
+/// An edge between two ghosts is flipped only when the vertex was inserted outside the hull
+/// ([`Ghosts::GrowHull`]): that is how the hull grows around it. A vertex inserted inside or on
+/// the boundary never lies strictly beyond a boundary edge in exact terms, except when the
+/// boundary is not convex (a carved domain, a mesh given with `r`) or when the vertex was
+/// rounded onto a boundary edge; flipping there would wrap a triangle around the outside.
+pub(crate) struct AroundVertex<'a, const TRACKED: bool> {
+    pub ghosts: Ghosts,
+    pub last: &'a mut TriangleId,
+}
+
+impl<const TRACKED: bool> Lawson for AroundVertex<'_, TRACKED> {
+    type Item = EdgeId;
+    const TRACKED: bool = TRACKED;
+    const SLOT_ZERO: bool = true;
+
+    #[inline(always)]
+    fn edge(&self, _mesh: &Mesh, e: EdgeId) -> Option<EdgeId> {
+        Some(e)
+    }
+
+    #[inline(always)]
+    fn is_fixed(&self, mesh: &Mesh, e: EdgeId) -> bool {
+        TRACKED && mesh.is_segment(e)
+    }
+
+    #[inline(always)]
+    fn ghosts(&self) -> Ghosts {
+        self.ghosts
+    }
+
+    #[inline(always)]
+    fn after_flip(&mut self, _quad: &Quad, [t1, t2]: [TriangleId; 2], stack: &mut Vec<EdgeId>) {
+        stack.extend_from_slice(&[t1.edge(0), t2.edge(0)]);
+    }
+
+    #[inline(always)]
+    fn kept(&mut self, e: EdgeId) {
+        *self.last = e.triangle();
     }
 }
 
@@ -327,12 +370,8 @@ impl<P: Predicates> Inserter<P> {
 pub fn triangulate<P: Predicates>(points: Vec<Point>, order: &[u32]) -> Triangulation {
     let sorted: Vec<Point> = order.iter().map(|&v| points[v as usize]).collect();
     let (mut mesh, sorted_duplicate_of) = triangulate_in_order::<P>(sorted, 0);
-    for c in mesh.corners.iter_mut() {
-        if *c != GHOST {
-            *c = order[*c as usize];
-        }
-    }
-    mesh.points = points;
+    mesh.rename_vertices(|v| VertexId::new(order[v.index()]));
+    drop(mesh.replace_points(points));
     let mut duplicate_of = vec![NONE; order.len()];
     for (i, &u) in sorted_duplicate_of.iter().enumerate() {
         if u != NONE {
@@ -358,7 +397,7 @@ mod tests {
                 Exact::orient2d(a, b, c) > 0.0,
                 "triangle {t} is not counter-clockwise"
             );
-            for e in 3 * t..3 * t + 3 {
+            for e in t.edges() {
                 let q = m.apex(m.twin(e));
                 if q != GHOST {
                     assert!(
@@ -398,9 +437,7 @@ mod tests {
             let t = triangulate::<Exact>(pts.clone(), &ord);
             check_delaunay(&t);
             // Euler: for n points with h on the hull, 2n - 2 - h triangles.
-            let hull = (0..t.mesh.triangle_count())
-                .filter(|&t2| t.mesh.is_ghost(t2))
-                .count();
+            let hull = t.mesh.triangles().filter(|&t2| t.mesh.is_ghost(t2)).count();
             assert_eq!(t.mesh.real_triangles().count(), 2 * 2000 - 2 - hull);
         }
     }
@@ -424,7 +461,7 @@ mod tests {
         assert_eq!(t.duplicate_of[100], 33);
         assert_eq!(t.duplicate_of[101], 0);
         assert!(t.duplicate_of[33] == NONE && t.duplicate_of[0] == NONE);
-        assert!(t.mesh.corners.contains(&33) && !t.mesh.corners.contains(&100));
+        assert!(t.mesh.raw_corners().contains(&33) && !t.mesh.raw_corners().contains(&100));
         let line: Vec<Point> = (0..10).map(|i| [i as f64, 2.0 * i as f64]).collect();
         let ord = order::hilbert_order(&line);
         assert!(triangulate::<Exact>(line, &ord).is_degenerate());

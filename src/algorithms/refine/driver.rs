@@ -9,7 +9,7 @@ use crate::algorithms::constrain::Constrainer;
 use crate::algorithms::domain::Domain;
 use crate::data::{Phase, Progress, ProgressFn};
 use crate::geometry::Predicates;
-use crate::mesh::Mesh;
+use crate::mesh::raw::RawMesh;
 
 /// Above that angle, refinement first runs straight toward it with a budget of this many new
 /// vertices per triangle of the unrefined mesh (plus what the area bound asks for).
@@ -38,7 +38,7 @@ pub fn refine<P: Predicates>(
     attributes: &mut Vec<f64>,
     attribute_count: usize,
 ) -> Report {
-    let mesh = &cdt.inserter.mesh;
+    let mesh = cdt.mesh().raw();
     let (floor2, extent2) = resolution(mesh);
     // Without the user's own test or budget: a run that makes far more vertices than the input
     // and the area bounds account for is stopped (an input a hair's breadth wide, such as nearly
@@ -234,7 +234,7 @@ impl<P: Predicates> Driver<'_, '_, P> {
 /// The resolution refinement works at, from the extent of the vertices: the squared floor
 /// below which no edge is made (2⁻⁴⁰ of the extent, far above the resolution of doubles there)
 /// and the squared extent.
-fn resolution(mesh: &Mesh) -> (f64, f64) {
+fn resolution(mesh: RawMesh<'_>) -> (f64, f64) {
     let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
     for p in points(mesh) {
         for i in 0..2 {
@@ -251,7 +251,7 @@ fn resolution(mesh: &Mesh) -> (f64, f64) {
     (floor * floor, extent * extent)
 }
 
-fn inside_triangle_count(mesh: &Mesh) -> u64 {
+fn inside_triangle_count(mesh: RawMesh<'_>) -> u64 {
     (0..mesh.triangle_count())
         .filter(|&t| inside(mesh, t))
         .count() as u64
@@ -259,7 +259,7 @@ fn inside_triangle_count(mesh: &Mesh) -> u64 {
 
 /// About how many vertices the area bounds (global, regional, per triangle) ask for: four times
 /// the number of triangles of the largest allowed areas that cover the domain.
-fn size_estimate<P: Predicates>(mesh: &Mesh, domain: &Domain, quality: &Quality<'_>) -> u64 {
+fn size_estimate<P: Predicates>(mesh: RawMesh<'_>, domain: &Domain, quality: &Quality<'_>) -> u64 {
     let triangles: f64 = (0..mesh.triangle_count())
         .filter(|&t| inside(mesh, t))
         .map(|t| {

@@ -7,7 +7,7 @@ use super::split_point::min_angle_sin2;
 use super::{edges_around, inside, VertexKind};
 use crate::algorithms::delaunay::Location;
 use crate::geometry::{Point, Predicates};
-use crate::mesh::{triangle_of, Mesh, GHOST, NONE};
+use crate::mesh::raw::{triangle_of, RawMesh, GHOST, NONE};
 
 /// The encroachment test for an angle bound θ.
 #[derive(Clone, Copy, Debug)]
@@ -47,7 +47,7 @@ impl Encroachment {
 
     /// Whether an apex beside the subsegment of half-edge `e`, in the domain, encroaches it (in
     /// a constrained Delaunay triangulation, no other vertex can if these do not).
-    pub(super) fn apex_encroaches(&self, mesh: &Mesh, e: u32) -> bool {
+    pub(super) fn apex_encroaches(&self, mesh: RawMesh<'_>, e: u32) -> bool {
         let (pu, pv) = (mesh.point(mesh.origin(e)), mesh.point(mesh.dest(e)));
         [e, mesh.twin(e)].iter().any(|&h| {
             let w = mesh.apex(h);
@@ -71,7 +71,7 @@ impl Cavity {
     /// does not cross segments), with `x` inside their diametral lenses or circles.
     pub(super) fn encroached_by<P: Predicates>(
         &mut self,
-        mesh: &Mesh,
+        mesh: RawMesh<'_>,
         encroachment: &Encroachment,
         x: Point,
         location: Location,
@@ -80,9 +80,9 @@ impl Cavity {
         stack.clear();
         seen.clear();
         match location {
-            Location::InTriangle(t) | Location::Outside(t) => stack.push(t),
+            Location::InTriangle(t) | Location::Outside(t) => stack.push(t.raw()),
             Location::OnEdge(e) => {
-                stack.extend_from_slice(&[triangle_of(e), triangle_of(mesh.twin(e))])
+                stack.extend_from_slice(&[triangle_of(e.raw()), triangle_of(mesh.twin(e.raw()))])
             }
             Location::OnVertex(_) => {}
         }
@@ -117,7 +117,7 @@ impl Cavity {
 
     /// The quality ([`min_angle_sin2`]) of the worst triangle that inserting `x` makes: `x`
     /// joined to the edges around the cavity that [`Self::encroached_by`] last found for it.
-    pub(super) fn worst_triangle_made(&self, mesh: &Mesh, x: Point) -> f64 {
+    pub(super) fn worst_triangle_made(&self, mesh: RawMesh<'_>, x: Point) -> f64 {
         let mut worst = f64::INFINITY;
         for &t in &self.triangles {
             for e in 3 * t..3 * t + 3 {
@@ -142,7 +142,7 @@ impl Cavity {
 /// corner, so that splits on two segments meet on common shells. Returns the parameter and the
 /// kind of the new vertex (the corner and the exponent of its distance).
 pub(super) fn split_parameter(
-    mesh: &Mesh,
+    mesh: RawMesh<'_>,
     kinds: &[VertexKind],
     u: u32,
     v: u32,
@@ -190,7 +190,7 @@ pub(super) fn split_parameter(
 /// such angle (larger is sharper). `None` for vertices inserted by refinement and for vertices
 /// whose segments meet at right or obtuse angles only. The smallest angle is between two
 /// segments consecutive around `x`, so one turn around it suffices.
-fn sharpest_corner(mesh: &Mesh, kinds: &[VertexKind], x: u32) -> Option<f64> {
+fn sharpest_corner(mesh: RawMesh<'_>, kinds: &[VertexKind], x: u32) -> Option<f64> {
     if matches!(kinds[x as usize], VertexKind::OnSegment { .. }) {
         return None;
     }

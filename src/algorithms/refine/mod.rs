@@ -22,7 +22,8 @@
 
 use crate::data::{ProgressFn, UnsuitableFn};
 use crate::geometry::Point;
-use crate::mesh::{prev, Mesh, OUTSIDE};
+use crate::mesh::raw::{prev, RawMesh};
+use crate::mesh::OUTSIDE;
 
 // The parts, each a type with its own state:
 mod attributes; // `Attributes`: the interpolated attributes of new vertices
@@ -79,23 +80,23 @@ enum VertexKind {
 // (yet); everything else goes through its methods.
 
 /// The mesh's vertices.
-fn points(mesh: &Mesh) -> &[Point] {
-    &mesh.points
+fn points(mesh: RawMesh<'_>) -> &[Point] {
+    mesh.points()
 }
 
 /// The domain tag of triangle `t` ([`OUTSIDE`], or which part of the domain it belongs to).
-fn tag(mesh: &Mesh, t: u32) -> u32 {
-    mesh.tag[t as usize]
+fn tag(mesh: RawMesh<'_>, t: u32) -> u32 {
+    mesh.tag(t)
 }
 
 /// Whether triangle `t` belongs to the domain (refinement works on the domain alone).
-fn inside(mesh: &Mesh, t: u32) -> bool {
+fn inside(mesh: RawMesh<'_>, t: u32) -> bool {
     tag(mesh, t) != OUTSIDE
 }
 
 /// The half-edges out of vertex `v`, one turn around it (needs vertex tracking).
-fn edges_around(mesh: &Mesh, v: u32) -> impl Iterator<Item = u32> + '_ {
-    let start = mesh.vertex_edge[v as usize];
+fn edges_around(mesh: RawMesh<'_>, v: u32) -> impl Iterator<Item = u32> + '_ {
+    let start = mesh.vertex_edge(v);
     let mut next_edge = Some(start);
     std::iter::from_fn(move || {
         let e = next_edge?;

@@ -17,7 +17,8 @@ use crate::algorithms::constrain::Constrainer;
 use crate::algorithms::delaunay::Location;
 use crate::algorithms::domain::Domain;
 use crate::geometry::{Point, Predicates};
-use crate::mesh::{next, triangle_of, Mesh, GHOST};
+use crate::mesh::raw::{next, triangle_of, RawMesh, GHOST};
+use crate::mesh::{EdgeId, VertexId};
 
 /// What a refinement works toward, and at what resolution: fixed for all its runs.
 pub(super) struct Settings<'r, 'q> {
@@ -121,8 +122,8 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
         }
     }
 
-    pub(super) fn mesh(&self) -> &Mesh {
-        &self.cdt.inserter.mesh
+    pub(super) fn mesh(&self) -> RawMesh<'_> {
+        self.cdt.mesh().raw()
     }
 
     pub(super) fn tally(&self) -> Tally {
@@ -286,8 +287,10 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
         }
         let vertex = self.new_vertex(p, kind);
         self.attributes.push_on_segment(u, v, t);
-        let _ = self.cdt.inserter.insert_at(vertex, Location::OnEdge(e));
-        self.cdt.settle(vertex);
+        let _ = self
+            .cdt
+            .insert_at(VertexId::new(vertex), Location::OnEdge(EdgeId::new(e)));
+        self.cdt.settle(VertexId::new(vertex));
         self.after_insertion(vertex);
         true
     }
@@ -354,7 +357,7 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
                     return;
                 }
                 let mut encroached = self.cavity.encroached_by::<P>(
-                    &self.cdt.inserter.mesh,
+                    self.cdt.mesh().raw(),
                     &self.encroachment,
                     x,
                     location,
@@ -381,7 +384,7 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
                 }
                 let vertex = self.new_vertex(x, VertexKind::Free);
                 self.attributes.push_in_triangle(corners, xi, eta);
-                let _ = self.cdt.inserter.insert_at(vertex, location);
+                let _ = self.cdt.insert_at(VertexId::new(vertex), location);
                 self.after_insertion(vertex);
             }
         }
@@ -410,8 +413,8 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
     fn too_close(&self, x: Point, location: Location) -> bool {
         let mesh = self.mesh();
         let triangles = match location {
-            Location::InTriangle(t) | Location::Outside(t) => [t, t],
-            Location::OnEdge(e) => [triangle_of(e), triangle_of(mesh.twin(e))],
+            Location::InTriangle(t) | Location::Outside(t) => [t.raw(), t.raw()],
+            Location::OnEdge(e) => [triangle_of(e.raw()), triangle_of(mesh.twin(e.raw()))],
             Location::OnVertex(_) => return true,
         };
         triangles
@@ -426,7 +429,7 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
 
     /// Adds vertex `p` of kind `kind` (its attributes are the caller's to add).
     fn new_vertex(&mut self, p: Point, kind: VertexKind) -> u32 {
-        let vertex = self.cdt.inserter.mesh.add_point(p);
+        let vertex = self.cdt.add_point(p).raw();
         self.kinds.push(kind);
         self.tally.steiner_points += 1;
         vertex

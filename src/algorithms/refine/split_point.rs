@@ -3,7 +3,7 @@
 
 use super::{edges_around, VertexKind};
 use crate::geometry::{circumcenter, Point};
-use crate::mesh::{Mesh, NONE};
+use crate::mesh::raw::{RawMesh, NONE};
 
 /// Two distances from a corner are equal (for the small-angle exemption of vertices not on one
 /// concentric shell: midpoints, or shells around two corners) within this fraction. Measured:
@@ -40,7 +40,7 @@ impl AngleBound {
     /// `ends`: the ends of each segment id, as given.
     pub(super) fn skinny(
         &self,
-        mesh: &Mesh,
+        mesh: RawMesh<'_>,
         kinds: &[VertexKind],
         ends: &[(u32, u32)],
         [a, b, c]: [u32; 3],
@@ -84,7 +84,7 @@ impl AngleBound {
     /// configuration is reached (Ruppert 1995, §5).
     fn is_excused_by_small_input_angle(
         &self,
-        mesh: &Mesh,
+        mesh: RawMesh<'_>,
         kinds: &[VertexKind],
         ends: &[(u32, u32)],
         u: u32,
@@ -185,7 +185,7 @@ impl AngleBound {
 }
 
 /// The id of a segment that vertex `v` lies on, if any.
-fn segment_through(mesh: &Mesh, v: u32) -> Option<u32> {
+fn segment_through(mesh: RawMesh<'_>, v: u32) -> Option<u32> {
     edges_around(mesh, v)
         .find(|&e| mesh.is_segment(e))
         .map(|e| mesh.segment_of(e))

@@ -5,7 +5,8 @@
 use super::inside;
 use crate::algorithms::delaunay::Location;
 use crate::geometry::{Point, Predicates};
-use crate::mesh::{triangle_of, Mesh, NONE};
+use crate::mesh::raw::{triangle_of, RawMesh, NONE};
+use crate::mesh::{EdgeId, TriangleId, VertexId};
 
 /// Where the straight walk from a bad triangle toward its new point ends.
 pub(super) enum Walk {
@@ -18,7 +19,7 @@ pub(super) enum Walk {
 }
 
 /// Walks in a straight line from the centroid of triangle `t` to `x`, staying in the domain.
-pub(super) fn walk<P: Predicates>(mesh: &Mesh, t: u32, x: Point) -> Walk {
+pub(super) fn walk<P: Predicates>(mesh: RawMesh<'_>, t: u32, x: Point) -> Walk {
     let [a, b, c] = mesh.triangle(t).map(|v| mesh.point(v));
     let g = [(a[0] + b[0] + c[0]) / 3.0, (a[1] + b[1] + c[1]) / 3.0];
     let mut t = t;
@@ -44,7 +45,7 @@ pub(super) fn walk<P: Predicates>(mesh: &Mesh, t: u32, x: Point) -> Walk {
         let (u, v) = (mesh.point(mesh.origin(exit)), mesh.point(mesh.dest(exit)));
         let side = P::orient2d(u, v, x);
         if side > 0.0 {
-            return Walk::Found(Location::InTriangle(t));
+            return Walk::Found(Location::InTriangle(TriangleId::new(t)));
         }
         if side == 0.0 {
             // On the exit edge (or its line beyond the triangle, which the ray rules out).
@@ -53,10 +54,10 @@ pub(super) fn walk<P: Predicates>(mesh: &Mesh, t: u32, x: Point) -> Walk {
             }
             for w in [mesh.origin(exit), mesh.dest(exit)] {
                 if mesh.point(w) == x {
-                    return Walk::Found(Location::OnVertex(w));
+                    return Walk::Found(Location::OnVertex(VertexId::new(w)));
                 }
             }
-            return Walk::Found(Location::OnEdge(exit));
+            return Walk::Found(Location::OnEdge(EdgeId::new(exit)));
         }
         if mesh.is_segment(exit) {
             return Walk::Blocked(exit);
@@ -74,7 +75,7 @@ pub(super) fn walk<P: Predicates>(mesh: &Mesh, t: u32, x: Point) -> Walk {
 
 /// Where `x` lies in triangle `t`, if it lies in it (closed): in it, on an edge (a segment hides
 /// nothing then, but a point on a segment splits it: `Blocked`), or on a vertex.
-fn walk_ends_in<P: Predicates>(mesh: &Mesh, t: u32, x: Point) -> Option<Walk> {
+fn walk_ends_in<P: Predicates>(mesh: RawMesh<'_>, t: u32, x: Point) -> Option<Walk> {
     let sides = [0, 1, 2].map(|i| {
         let e = 3 * t + i;
         P::orient2d(mesh.point(mesh.origin(e)), mesh.point(mesh.dest(e)), x)
@@ -87,14 +88,16 @@ fn walk_ends_in<P: Predicates>(mesh: &Mesh, t: u32, x: Point) -> Option<Walk> {
         .map(|i| 3 * t + i)
         .collect();
     Some(match on[..] {
-        [] => Walk::Found(Location::InTriangle(t)),
+        [] => Walk::Found(Location::InTriangle(TriangleId::new(t))),
         [e] if mesh.is_segment(e) => Walk::Blocked(e),
-        [e] => Walk::Found(Location::OnEdge(e)),
+        [e] => Walk::Found(Location::OnEdge(EdgeId::new(e))),
         // On two edges: at their common corner.
         _ => mesh
             .triangle(t)
             .into_iter()
             .find(|&w| mesh.point(w) == x)
-            .map_or(Walk::Lost, |w| Walk::Found(Location::OnVertex(w))),
+            .map_or(Walk::Lost, |w| {
+                Walk::Found(Location::OnVertex(VertexId::new(w)))
+            }),
     })
 }

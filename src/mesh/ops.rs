@@ -1,0 +1,416 @@
+//! The topological operations on a mesh: adding triangles, splitting a triangle or an edge at a
+//! new vertex, flipping an edge, covering a boundary with ghosts, keeping part of a mesh. Each
+//! keeps the twins mutual and the optional tracking (segments, vertex edges, tags) up to date.
+//! They work on the raw `u32` arrays; the public wrappers at the end take typed ids.
+
+use super::raw::{next, prev, triangle_of};
+use super::{EdgeId, Mesh, TriangleId, VertexId, GHOST, NONE, OUTSIDE};
+use crate::geometry::Point;
+
+const G: u32 = GHOST.raw();
+
+impl Mesh {
+    #[inline(always)]
+    fn c(&self, e: u32) -> u32 {
+        self.corners[e as usize]
+    }
+
+    #[inline(always)]
+    fn dst(&self, e: u32) -> u32 {
+        self.corners[next(e) as usize]
+    }
+
+    #[inline(always)]
+    fn apx(&self, e: u32) -> u32 {
+        self.corners[prev(e) as usize]
+    }
+
+    #[inline(always)]
+    fn tw(&self, e: u32) -> u32 {
+        self.twins[e as usize]
+    }
+
+    #[inline(always)]
+    fn pt(&self, v: u32) -> Point {
+        self.points[v as usize]
+    }
+
+    #[inline(always)]
+    fn tri(&self, t: u32) -> [u32; 3] {
+        let i = 3 * t as usize;
+        [self.corners[i], self.corners[i + 1], self.corners[i + 2]]
+    }
+
+    #[inline(always)]
+    fn ghost(&self, t: u32) -> bool {
+        let [a, b, c] = self.tri(t);
+        a == G || b == G || c == G
+    }
+
+    /// After triangles were rewritten: every corner's outgoing half-edge and every new
+    /// half-edge's segment id (copied from its external twin, or none for an inner edge).
+    #[inline(always)]
+    fn refresh(&mut self, triangles: &[u32], inner: &[u32]) {
+        if !self.vertex_edge.is_empty() {
+            for &t in triangles {
+                for e in 3 * t..3 * t + 3 {
+                    let v = self.corners[e as usize];
+                    if v != G {
+                        self.vertex_edge[v as usize] = e;
+                    }
+                }
+            }
+        }
+        if !self.segment.is_empty() {
+            self.segment.resize(self.corners.len(), NONE);
+            for &t in triangles {
+                for e in 3 * t..3 * t + 3 {
+                    let f = self.twins[e as usize];
+                    self.segment[e as usize] = if inner.contains(&e) {
+                        NONE
+                    } else {
+                        self.segment[f as usize]
+                    };
+                }
+            }
+        }
+    }
+
+    #[inline(always)]
+    fn link_raw(&mut self, a: u32, b: u32) {
+        self.twins[a as usize] = b;
+        self.twins[b as usize] = a;
+    }
+
+    /// Appends a triangle with the given corners and unset twins; returns its index.
+    #[inline(always)]
+    fn add_triangle_raw(&mut self, a: u32, b: u32, c: u32) -> u32 {
+        let t = self.triangle_count();
+        self.corners.extend_from_slice(&[a, b, c]);
+        self.twins.extend_from_slice(&[NONE, NONE, NONE]);
+        t
+    }
+
+    #[inline(always)]
+    fn set_triangle(&mut self, t: u32, a: u32, b: u32, c: u32) {
+        let i = 3 * t as usize;
+        self.corners[i] = a;
+        self.corners[i + 1] = b;
+        self.corners[i + 2] = c;
+    }
+
+    /// Covers the boundary of a mesh whose boundary half-edges have no twin yet ([`NONE`]) with
+    /// ghost triangles: one `(w, v, ∞)` per boundary half-edge `v → w`, each linked to its
+    /// neighbours around the boundary vertices. The boundary need not be convex, and may have
+    /// holes and vertices where two parts of the mesh touch: around boundary vertex `v`, turning
+    /// counter-clockwise inside the mesh from the boundary edge leaving `v` reaches the boundary
+    /// edge entering `v` in the same part, and their ghosts share `v–∞`. A ghost takes the
+    /// segment id of its boundary edge and the tag [`OUTSIDE`].
+    pub fn cover_boundary_with_ghosts(&mut self) {
+        let boundary: Vec<u32> = (0..self.corners.len() as u32)
+            .filter(|&e| self.twins[e as usize] == NONE)
+            .collect();
+        for &h in &boundary {
+            let g = self.add_triangle_raw(self.dst(h), self.c(h), G);
+            self.link_raw(h, 3 * g);
+        }
+        for &h in &boundary {
+            let entering = self
+                .star_from(EdgeId::new(h))
+                .skip(1)
+                .find(|&f| self.is_ghost(f.triangle()))
+                .expect("turning inside the mesh reaches a boundary edge")
+                .raw();
+            // Ghost of h: (w, v, ∞) with slot 1 = v → ∞; ghost of the entering edge x → v:
+            // (v, x, ∞) with slot 2 = ∞ → v.
+            let (g, ghost_prev) = (triangle_of(self.tw(h)), triangle_of(entering));
+            self.link_raw(3 * g + 1, 3 * ghost_prev + 2);
+        }
+        if !self.segment.is_empty() {
+            self.segment.resize(self.corners.len(), NONE);
+            for &h in &boundary {
+                let ghost_edge = self.tw(h) as usize;
+                self.segment[ghost_edge] = self.segment[h as usize];
+            }
+        }
+        if !self.tag.is_empty() {
+            self.tag.resize(self.triangle_count() as usize, OUTSIDE);
+        }
+    }
+
+    /// Keeps only the real triangles for which `keep` holds (their order kept, renumbered from
+    /// 0) and covers the new boundary with ghosts. Segment ids, tags and vertex edges (where
+    /// tracked) follow; a vertex left in no triangle has no edge.
+    pub fn retain_triangles(&mut self, keep: impl Fn(TriangleId) -> bool) {
+        let old = std::mem::take(self);
+        let mut new_index = vec![NONE; old.triangle_count() as usize];
+        let mut kept = 0u32;
+        for t in 0..old.triangle_count() {
+            if !old.ghost(t) && keep(TriangleId::new(t)) {
+                new_index[t as usize] = kept;
+                kept += 1;
+            }
+        }
+        let tracks_segments = !old.segment.is_empty();
+        let tracks_tags = !old.tag.is_empty();
+        let mut mesh = Mesh {
+            points: old.points.clone(),
+            ..Mesh::default()
+        };
+        for t in 0..old.triangle_count() {
+            if new_index[t as usize] == NONE {
+                continue;
+            }
+            mesh.corners
+                .extend_from_slice(&old.corners[3 * t as usize..3 * t as usize + 3]);
+            for e in 3 * t..3 * t + 3 {
+                let f = old.twins[e as usize];
+                let u = new_index[triangle_of(f) as usize];
+                mesh.twins
+                    .push(if u == NONE { NONE } else { 3 * u + f % 3 });
+                if tracks_segments {
+                    mesh.segment.push(old.segment[e as usize]);
+                }
+            }
+            if tracks_tags {
+                mesh.tag.push(old.tag[t as usize]);
+            }
+        }
+        mesh.cover_boundary_with_ghosts();
+        if !old.vertex_edge.is_empty() {
+            mesh.track_vertex_edges();
+        }
+        *self = mesh;
+    }
+
+    /// Starts a triangulation with the counter-clockwise triangle `(a, b, c)` and the three
+    /// ghosts around it. Returns the real triangle.
+    fn init_triangle_raw(&mut self, a: u32, b: u32, c: u32) -> u32 {
+        let t = self.add_triangle_raw(a, b, c);
+        let gab = self.add_triangle_raw(b, a, G);
+        let gbc = self.add_triangle_raw(c, b, G);
+        let gca = self.add_triangle_raw(a, c, G);
+        self.link_raw(3 * t, 3 * gab);
+        self.link_raw(3 * t + 1, 3 * gbc);
+        self.link_raw(3 * t + 2, 3 * gca);
+        self.link_raw(3 * gab + 1, 3 * gca + 2);
+        self.link_raw(3 * gab + 2, 3 * gbc + 1);
+        self.link_raw(3 * gbc + 2, 3 * gca + 1);
+        t
+    }
+
+    /// Splits triangle `t = (a, b, c)` at the new vertex `p` into `(a, b, p)`, `(b, c, p)` and
+    /// `(c, a, p)`. In each of the three, half-edge slot 0 is the edge opposite `p`. Returns the
+    /// three triangles. Works for ghosts too (a point beyond a hull edge splits its ghost).
+    fn split_triangle_raw(&mut self, t: u32, p: u32) -> [u32; 3] {
+        let [a, b, c] = self.tri(t);
+        let (tw_ab, tw_bc, tw_ca) = (self.tw(3 * t), self.tw(3 * t + 1), self.tw(3 * t + 2));
+        self.set_triangle(t, a, b, p);
+        let t1 = self.add_triangle_raw(b, c, p);
+        let t2 = self.add_triangle_raw(c, a, p);
+        self.link_raw(3 * t, tw_ab);
+        self.link_raw(3 * t1, tw_bc);
+        self.link_raw(3 * t2, tw_ca);
+        self.link_raw(3 * t + 1, 3 * t1 + 2);
+        self.link_raw(3 * t1 + 1, 3 * t2 + 2);
+        self.link_raw(3 * t2 + 1, 3 * t + 2);
+        self.refresh(
+            &[t, t1, t2],
+            &[
+                3 * t + 1,
+                3 * t + 2,
+                3 * t1 + 1,
+                3 * t1 + 2,
+                3 * t2 + 1,
+                3 * t2 + 2,
+            ],
+        );
+        if !self.tag.is_empty() {
+            let tag = self.tag[t as usize];
+            self.tag.extend_from_slice(&[tag, tag]);
+        }
+        [t, t1, t2]
+    }
+
+    /// Splits the edge of half-edge `e` (from `a` to `b`) at the new vertex `p`, which lies on it.
+    /// The two triangles `(a, b, c)` and `(b, a, d)` become four, each with half-edge slot 0
+    /// opposite `p`: `(c, a, p)`, `(b, c, p)`, `(a, d, p)`, `(d, b, p)`. Returned in that order.
+    fn split_edge_raw(&mut self, e: u32, p: u32) -> [u32; 4] {
+        let f = self.tw(e);
+        let split_segment = self.segment_of(EdgeId::new(e));
+        let (t1, t2) = (triangle_of(e), triangle_of(f));
+        let (a, b, c, d) = (self.c(e), self.dst(e), self.apx(e), self.apx(f));
+        let (tw_bc, tw_ca) = (self.tw(next(e)), self.tw(prev(e)));
+        let (tw_ad, tw_db) = (self.tw(next(f)), self.tw(prev(f)));
+        self.set_triangle(t1, c, a, p);
+        self.set_triangle(t2, b, c, p);
+        let t3 = self.add_triangle_raw(a, d, p);
+        let t4 = self.add_triangle_raw(d, b, p);
+        self.link_raw(3 * t1, tw_ca);
+        self.link_raw(3 * t2, tw_bc);
+        self.link_raw(3 * t3, tw_ad);
+        self.link_raw(3 * t4, tw_db);
+        self.link_raw(3 * t1 + 1, 3 * t3 + 2); // a-p
+        self.link_raw(3 * t1 + 2, 3 * t2 + 1); // p-c
+        self.link_raw(3 * t2 + 2, 3 * t4 + 1); // p-b
+        self.link_raw(3 * t3 + 1, 3 * t4 + 2); // d-p
+        let (ap, pa, pb, bp) = (3 * t1 + 1, 3 * t3 + 2, 3 * t2 + 2, 3 * t4 + 1);
+        let inner = [
+            ap,
+            pa,
+            pb,
+            bp,
+            3 * t1 + 2,
+            3 * t2 + 1,
+            3 * t3 + 1,
+            3 * t4 + 2,
+        ];
+        self.refresh(&[t1, t2, t3, t4], &inner);
+        if !self.tag.is_empty() {
+            // t1 and t2 now lie on e's side, t3 and t4 on its twin's.
+            let (e_side, f_side) = (self.tag[t1 as usize], self.tag[t2 as usize]);
+            self.tag[t2 as usize] = e_side;
+            self.tag.extend_from_slice(&[f_side, f_side]);
+        }
+        if split_segment != NONE {
+            for h in [ap, pa, pb, bp] {
+                self.segment[h as usize] = split_segment;
+            }
+        }
+        [t1, t2, t3, t4]
+    }
+
+    /// Flips the edge of half-edge `e`, whose triangle is `(a, b, p)` with `e` from `a` to `b`,
+    /// against its twin's triangle `(b, a, q)`. Afterwards the two triangles are `(a, q, p)` and
+    /// `(q, b, p)`, each with half-edge slot 0 opposite `p` (the edges `a-q` and `q-b`).
+    /// Returns the two triangles, first the one that held `e`.
+    fn flip_raw(&mut self, e: u32) -> [u32; 2] {
+        let f = self.tw(e);
+        let (t1, t2) = (triangle_of(e), triangle_of(f));
+        let (a, b, p, q) = (self.c(e), self.dst(e), self.apx(e), self.apx(f));
+        let (tw_bp, tw_pa) = (self.tw(next(e)), self.tw(prev(e)));
+        let (tw_aq, tw_qb) = (self.tw(next(f)), self.tw(prev(f)));
+        self.set_triangle(t1, a, q, p);
+        self.set_triangle(t2, q, b, p);
+        self.link_raw(3 * t1, tw_aq);
+        self.link_raw(3 * t1 + 2, tw_pa);
+        self.link_raw(3 * t2, tw_qb);
+        self.link_raw(3 * t2 + 1, tw_bp);
+        self.link_raw(3 * t1 + 1, 3 * t2 + 2);
+        self.refresh(&[t1, t2], &[3 * t1 + 1, 3 * t2 + 2]);
+        if !self.tag.is_empty() {
+            let (tag1, tag2) = (self.tag[t1 as usize], self.tag[t2 as usize]);
+            if tag1 != tag2 {
+                // Tags mark parts of the plane (with `r`, each input triangle's area bound and
+                // attributes): a new triangle takes the tag of the old one its centroid is in.
+                let (pa, pb) = (self.pt(a), self.pt(b));
+                let side = |x: u32, y: u32, z: u32| {
+                    let (px, py, pz) = (self.pt(x), self.pt(y), self.pt(z));
+                    let g = [(px[0] + py[0] + pz[0]) / 3.0, (px[1] + py[1] + pz[1]) / 3.0];
+                    let left =
+                        (pb[0] - pa[0]) * (g[1] - pa[1]) - (pb[1] - pa[1]) * (g[0] - pa[0]) > 0.0;
+                    if left {
+                        tag1
+                    } else {
+                        tag2
+                    }
+                };
+                let (new1, new2) = (side(a, q, p), side(q, b, p));
+                self.tag[t1 as usize] = new1;
+                self.tag[t2 as usize] = new2;
+            }
+        }
+        [t1, t2]
+    }
+
+    // ---- The operations, with typed ids ----
+
+    /// Joins `a` and `b` as twins.
+    #[inline(always)]
+    pub fn link(&mut self, a: EdgeId, b: EdgeId) {
+        self.link_raw(a.raw(), b.raw());
+    }
+
+    /// Appends a triangle with the given corners and unset twins; returns its index.
+    #[inline(always)]
+    pub fn add_triangle(&mut self, a: VertexId, b: VertexId, c: VertexId) -> TriangleId {
+        TriangleId::new(self.add_triangle_raw(a.raw(), b.raw(), c.raw()))
+    }
+
+    /// Rewrites the corners of triangle `t` (twins and tracking untouched: the caller relinks).
+    #[inline(always)]
+    pub fn set_corners(&mut self, t: TriangleId, [a, b, c]: [VertexId; 3]) {
+        self.set_triangle(t.raw(), a.raw(), b.raw(), c.raw());
+    }
+
+    /// Rewrites triangle `t` with new corners, for a retriangulation in place (segment
+    /// recovery): its half-edges lose their segment ids (where tracked), and each corner's
+    /// tracked outgoing half-edge becomes its half-edge here. The caller links the twins.
+    pub fn rewrite_triangle(&mut self, t: TriangleId, corners: [VertexId; 3]) {
+        let base = 3 * t.index();
+        self.corners[base..base + 3].copy_from_slice(&corners.map(VertexId::raw));
+        if !self.segment.is_empty() {
+            self.segment[base..base + 3].fill(NONE);
+        }
+        if !self.vertex_edge.is_empty() {
+            for (k, v) in corners.into_iter().enumerate() {
+                self.vertex_edge[v.index()] = (base + k) as u32;
+            }
+        }
+    }
+
+    /// Joins `inner`, a half-edge of a rewritten triangle, to `outer`, an untouched one across
+    /// the boundary of the rewritten region: `inner` takes `outer`'s segment id (where tracked).
+    #[inline]
+    pub fn link_to_outer(&mut self, inner: EdgeId, outer: EdgeId) {
+        self.link_raw(inner.raw(), outer.raw());
+        if !self.segment.is_empty() {
+            self.segment[inner.index()] = self.segment[outer.index()];
+        }
+    }
+
+    /// Starts a triangulation with the counter-clockwise triangle `(a, b, c)` and the three
+    /// ghosts around it. Returns the real triangle.
+    pub fn init_triangle(&mut self, a: VertexId, b: VertexId, c: VertexId) -> TriangleId {
+        TriangleId::new(self.init_triangle_raw(a.raw(), b.raw(), c.raw()))
+    }
+
+    /// Splits triangle `t = (a, b, c)` at the new vertex `p` into `(a, b, p)`, `(b, c, p)` and
+    /// `(c, a, p)`. In each of the three, half-edge slot 0 is the edge opposite `p`. Returns the
+    /// three triangles. Works for ghosts too (a point beyond a hull edge splits its ghost).
+    pub fn split_triangle(&mut self, t: TriangleId, p: VertexId) -> [TriangleId; 3] {
+        self.split_triangle_raw(t.raw(), p.raw())
+            .map(TriangleId::new)
+    }
+
+    /// Splits the edge of half-edge `e` (from `a` to `b`) at the new vertex `p`, which lies on it.
+    /// The two triangles `(a, b, c)` and `(b, a, d)` become four, each with half-edge slot 0
+    /// opposite `p`: `(c, a, p)`, `(b, c, p)`, `(a, d, p)`, `(d, b, p)`. Returned in that order.
+    pub fn split_edge(&mut self, e: EdgeId, p: VertexId) -> [TriangleId; 4] {
+        self.split_edge_raw(e.raw(), p.raw()).map(TriangleId::new)
+    }
+
+    /// Flips the edge of half-edge `e`, whose triangle is `(a, b, p)` with `e` from `a` to `b`,
+    /// against its twin's triangle `(b, a, q)`. Afterwards the two triangles are `(a, q, p)` and
+    /// `(q, b, p)`, each with half-edge slot 0 opposite `p` (the edges `a-q` and `q-b`).
+    /// Returns the two triangles, first the one that held `e`.
+    pub fn flip(&mut self, e: EdgeId) -> [TriangleId; 2] {
+        self.flip_raw(e.raw()).map(TriangleId::new)
+    }
+
+    /// Appends the triangles of `other` (over the same points, or points this mesh will be
+    /// given) after this mesh's, their half-edges renumbered; neither mesh tracks anything. The
+    /// two parts are not joined: the caller links them (the merge of two halves).
+    pub fn append(&mut self, mut other: Mesh) {
+        debug_assert!(
+            self.segment.is_empty() && self.vertex_edge.is_empty() && self.tag.is_empty()
+        );
+        let offset = self.edge_count();
+        drop(std::mem::take(&mut other.points));
+        let corners = std::mem::take(&mut other.corners);
+        self.corners.extend_from_slice(&corners);
+        drop(corners);
+        let twins = std::mem::take(&mut other.twins);
+        self.twins.extend(twins.iter().map(|&f| f + offset));
+    }
+}

@@ -1,0 +1,207 @@
+//! Below the typed API: unchecked access for the bulk Delaunay build's inner loop, whose safety
+//! rests on the mesh's invariants, and the `u32` view ([`RawMesh`]) with the `u32` half-edge
+//! arithmetic ([`next`], [`prev`], [`triangle_of`]) that refinement still uses.
+//!
+//! Compatibility shim: `RawMesh`, [`Mesh::raw`], the `u32` functions and constants here exist
+//! for `algorithms::refine`, which has not been converted to typed ids yet; they go once it is.
+
+use super::{EdgeId, Mesh, TriangleId, VertexId};
+use crate::geometry::Point;
+
+/// The vertex at infinity as a raw `u32` (refinement's compatibility view).
+pub const GHOST: u32 = u32::MAX;
+/// "No half-edge / no triangle / no segment" as a raw `u32`.
+pub const NONE: u32 = u32::MAX;
+
+/// The half-edge after `e` in its triangle (counter-clockwise).
+#[inline(always)]
+pub fn next(e: u32) -> u32 {
+    if e % 3 == 2 {
+        e - 2
+    } else {
+        e + 1
+    }
+}
+
+/// The half-edge before `e` in its triangle.
+#[inline(always)]
+pub fn prev(e: u32) -> u32 {
+    if e % 3 == 0 {
+        e + 2
+    } else {
+        e - 1
+    }
+}
+
+/// The triangle that owns half-edge `e`.
+#[inline(always)]
+pub fn triangle_of(e: u32) -> u32 {
+    e / 3
+}
+
+impl Mesh {
+    /// The corner half-edge `e` starts at, without a bounds check.
+    ///
+    /// # Safety
+    /// `e` is a half-edge of the mesh (`< edge_count()`).
+    #[inline(always)]
+    pub unsafe fn corner_unchecked(&self, e: EdgeId) -> VertexId {
+        debug_assert!(e.index() < self.corners.len());
+        // SAFETY: by the contract.
+        VertexId::new(unsafe { *self.corners.get_unchecked(e.index()) })
+    }
+
+    /// The twin of `e`, without a bounds check.
+    ///
+    /// # Safety
+    /// `e` is a half-edge of the mesh.
+    #[inline(always)]
+    pub unsafe fn twin_unchecked(&self, e: EdgeId) -> EdgeId {
+        debug_assert!(e.index() < self.twins.len());
+        // SAFETY: by the contract; `twins` has the length of `corners`.
+        EdgeId::new(unsafe { *self.twins.get_unchecked(e.index()) })
+    }
+
+    /// The point of `v`, without a bounds check.
+    ///
+    /// # Safety
+    /// `v` is a vertex of the mesh (not [`super::GHOST`]).
+    #[inline(always)]
+    pub unsafe fn point_unchecked(&self, v: VertexId) -> Point {
+        debug_assert!(v.index() < self.points.len());
+        // SAFETY: by the contract.
+        unsafe { *self.points.get_unchecked(v.index()) }
+    }
+
+    /// [`Mesh::set_corners`] without a bounds check.
+    ///
+    /// # Safety
+    /// `t` is a triangle of the mesh.
+    #[inline(always)]
+    pub unsafe fn set_corners_unchecked(&mut self, t: TriangleId, corners: [VertexId; 3]) {
+        let i = 3 * t.index();
+        debug_assert!(i + 3 <= self.corners.len());
+        // SAFETY: by the contract, the three slots of `t` are in range.
+        unsafe {
+            self.corners
+                .get_unchecked_mut(i..i + 3)
+                .copy_from_slice(&corners.map(VertexId::raw))
+        };
+    }
+
+    /// [`Mesh::link`] without bounds checks.
+    ///
+    /// # Safety
+    /// `a` and `b` are half-edges of the mesh.
+    #[inline(always)]
+    pub unsafe fn link_unchecked(&mut self, a: EdgeId, b: EdgeId) {
+        debug_assert!(a.index().max(b.index()) < self.twins.len());
+        // SAFETY: by the contract.
+        unsafe {
+            *self.twins.get_unchecked_mut(a.index()) = b.raw();
+            *self.twins.get_unchecked_mut(b.index()) = a.raw();
+        }
+    }
+
+    /// Appends two triangles with the given corners (three each) and unset twins, for a mesh
+    /// that tracks nothing (the bulk build); returns the first one. No reallocation when the
+    /// mesh was made with room for them.
+    #[inline(always)]
+    pub fn push_two_triangles(&mut self, corners: [VertexId; 6]) -> TriangleId {
+        debug_assert!(
+            self.segment.is_empty() && self.vertex_edge.is_empty() && self.tag.is_empty()
+        );
+        let len = self.corners.len();
+        if self.corners.capacity() - len < 6 || self.twins.capacity() - len < 6 {
+            // Not reached in the bulk build: n points make at most 2n - 2 triangle slots, and
+            // 2n + 2 are reserved.
+            self.corners.reserve(6);
+            self.twins.reserve(6);
+        }
+        let corners = corners.map(VertexId::raw);
+        // SAFETY: both vectors have room for 6 more items (checked above); every new item is
+        // written before the length covers it.
+        unsafe {
+            std::ptr::copy_nonoverlapping(corners.as_ptr(), self.corners.as_mut_ptr().add(len), 6);
+            std::ptr::write_bytes(self.twins.as_mut_ptr().add(len), 0xff, 6);
+            self.corners.set_len(len + 6);
+            self.twins.set_len(len + 6);
+        }
+        TriangleId::new((len / 3) as u32)
+    }
+
+    /// The `u32` view of the mesh (compatibility shim for refinement; see the module docs).
+    #[inline(always)]
+    pub fn raw(&self) -> RawMesh<'_> {
+        RawMesh(self)
+    }
+}
+
+/// The mesh read through raw `u32` ids (compatibility shim for `algorithms::refine`).
+#[derive(Clone, Copy)]
+pub struct RawMesh<'a>(&'a Mesh);
+
+impl<'a> RawMesh<'a> {
+    #[inline(always)]
+    pub fn origin(self, e: u32) -> u32 {
+        self.0.corners[e as usize]
+    }
+    #[inline(always)]
+    pub fn dest(self, e: u32) -> u32 {
+        self.0.corners[next(e) as usize]
+    }
+    #[inline(always)]
+    pub fn apex(self, e: u32) -> u32 {
+        self.0.corners[prev(e) as usize]
+    }
+    #[inline(always)]
+    pub fn twin(self, e: u32) -> u32 {
+        self.0.twins[e as usize]
+    }
+    #[inline(always)]
+    pub fn point(self, v: u32) -> Point {
+        self.0.points[v as usize]
+    }
+    #[inline(always)]
+    pub fn points(self) -> &'a [Point] {
+        &self.0.points
+    }
+    #[inline(always)]
+    pub fn triangle(self, t: u32) -> [u32; 3] {
+        self.0.triangle(TriangleId::new(t)).map(VertexId::raw)
+    }
+    #[inline(always)]
+    pub fn is_ghost(self, t: u32) -> bool {
+        self.0.is_ghost(TriangleId::new(t))
+    }
+    #[inline(always)]
+    pub fn triangle_count(self) -> u32 {
+        self.0.triangle_count()
+    }
+    #[inline(always)]
+    pub fn edge_count(self) -> u32 {
+        self.0.edge_count()
+    }
+    #[inline(always)]
+    pub fn segment_of(self, e: u32) -> u32 {
+        self.0.segment_of(EdgeId::new(e))
+    }
+    #[inline(always)]
+    pub fn is_segment(self, e: u32) -> bool {
+        self.0.is_segment(EdgeId::new(e))
+    }
+    /// The tracked outgoing half-edge of `v`, or [`NONE`].
+    #[inline(always)]
+    pub fn vertex_edge(self, v: u32) -> u32 {
+        self.0.vertex_edge[v as usize]
+    }
+    #[inline(always)]
+    pub fn tag(self, t: u32) -> u32 {
+        self.0.tag[t as usize]
+    }
+    pub fn find_edge(self, a: u32, b: u32) -> Option<u32> {
+        self.0
+            .find_edge(VertexId::new(a), VertexId::new(b))
+            .map(EdgeId::raw)
+    }
+}
