@@ -248,24 +248,28 @@ fn push_g_layout_of_integer(out: &mut Vec<u8>, digits: u64, exponent: i32) {
     }
 }
 
-/// Two decimal digits per entry, for 0 to 99.
+/// Two decimal digits per entry, for 0 to 99 (values of 10^8 and more).
 const PAIRS: &[u8; 200] = b"0001020304050607080910111213141516171819\
                             2021222324252627282930313233343536373839\
                             4041424344454647484950515253545556575859\
                             6061626364656667686970717273747576777879\
                             8081828384858687888990919293949596979899";
 
-/// Writes `value` (below 10^8) as exactly 8 digits at `text[at..at + 8]`.
+/// The 8 decimal digits of `value` (below 10^8, leading zeros included) as ASCII bytes in a
+/// little-endian word (the first digit in the lowest byte), computed in parallel within the
+/// word (SWAR): the two 4-digit halves in 32-bit lanes, split into pairs in 16-bit lanes, then
+/// into digits in bytes. Each split divides by 100 or 10 with a multiply and shift that is exact
+/// for the lane's range (n·10486 >> 20 = ⌊n/100⌋ for n < 10^4; m·103 >> 10 = ⌊m/10⌋ for
+/// m < 100) and whose products stay inside their lanes.
 #[inline(always)]
-fn write_8_digits(text: &mut [u8], at: usize, value: u32) {
-    let (high, low) = (value / 10_000, value % 10_000);
-    for (k, pair) in [high / 100, high % 100, low / 100, low % 100]
-        .into_iter()
-        .enumerate()
-    {
-        let pair = pair as usize;
-        text[at + 2 * k..at + 2 * k + 2].copy_from_slice(&PAIRS[2 * pair..2 * pair + 2]);
-    }
+fn eight_digits(value: u32) -> u64 {
+    let value = u64::from(value);
+    let halves = (value / 10_000) | ((value % 10_000) << 32);
+    let hundreds = ((halves * 10_486) >> 20) & 0x0000_007f_0000_007f;
+    let pairs = hundreds | ((halves - hundreds * 100) << 16);
+    let tens = ((pairs * 103) >> 10) & 0x000f_000f_000f_000f;
+    let digits = tens | ((pairs - tens * 10) << 8);
+    digits | 0x3030_3030_3030_3030
 }
 
 /// Writes `value` (below 10^17) as exactly 17 digits at `text[at..at + 17]`.
@@ -273,8 +277,8 @@ fn write_8_digits(text: &mut [u8], at: usize, value: u32) {
 fn write_17_digits(text: &mut [u8], at: usize, value: u64) {
     let (high, low) = (value / 100_000_000, (value % 100_000_000) as u32);
     text[at] = b'0' + (high / 100_000_000) as u8;
-    write_8_digits(text, at + 1, (high % 100_000_000) as u32);
-    write_8_digits(text, at + 9, low);
+    text[at + 1..at + 9].copy_from_slice(&eight_digits((high % 100_000_000) as u32).to_le_bytes());
+    text[at + 9..at + 17].copy_from_slice(&eight_digits(low).to_le_bytes());
 }
 
 /// `value` as `%.17g` in a new `String` (tests, messages).
@@ -302,9 +306,19 @@ fn decimal_length(value: u64) -> usize {
     guess + usize::from((value | 1) >= POWERS[guess])
 }
 
-/// Appends the decimal digits of `value`, written in place from the last one back, two at a
-/// time (32-bit divisions once the value fits).
+/// Appends the decimal digits of `value`: below 10^8 (vertex and triangle numbers) as
+/// [`eight_digits`] with the leading zeros shifted out, one 8-byte store; larger values from
+/// the last digit back, two at a time.
 fn push_unsigned(out: &mut Vec<u8>, value: u64) {
+    if value < 100_000_000 {
+        let digits = eight_digits(value as u32);
+        // Leading zero digits are the low bytes that hold b'0' (a lone 0 keeps one).
+        let zeros = (((digits ^ 0x3030_3030_3030_3030).trailing_zeros() / 8) as usize).min(7);
+        let at = out.len();
+        out.extend_from_slice(&(digits >> (8 * zeros)).to_le_bytes());
+        out.truncate(at + 8 - zeros);
+        return;
+    }
     let length = decimal_length(value);
     let at = out.len();
     out.extend_from_slice(&[b'0'; 20]);
@@ -501,6 +515,38 @@ mod tests {
                 );
                 value = f64::from_bits(value.to_bits() + 1);
             }
+        }
+    }
+
+    #[test]
+    fn eight_digits_and_unsigned_integers() {
+        let check = |value: u64| {
+            let mut out = b"x".to_vec();
+            push_unsigned(&mut out, value);
+            assert_eq!(out, format!("x{value}").into_bytes(), "{value}");
+            if value < 100_000_000 {
+                let digits = eight_digits(value as u32).to_le_bytes();
+                assert_eq!(digits, *format!("{value:08}").as_bytes(), "{value}");
+            }
+        };
+        (0..200_000).for_each(check);
+        let mut state: u64 = 0x9e37_79b9_7f4a_7c15;
+        for _ in 0..200_000 {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            check(state >> (state % 64));
+            check((state >> 32) % 100_000_000);
+        }
+        for value in [
+            99_999_999,
+            100_000_000,
+            100_000_001,
+            10_000_000,
+            9_999_999,
+            u64::MAX,
+        ] {
+            check(value);
         }
     }
 
