@@ -3,7 +3,8 @@
 //! interleaving. `cargo run --release --example profile -- cdt 100000 3` (mode `cdt` or
 //! `delaunay`, size, repetitions; `SWITCHES` overrides the switches). Prints each run's times.
 //! Mode `files` profiles the command-line program's file work on the Delaunay input in memory:
-//! writing its `.node` text, reading it back, and writing the `.ele` of its triangulation.
+//! writing its `.node` text, reading it back, and writing the `.ele` of its triangulation. Mode
+//! `order` times the default insertion order (Hilbert curve in random rounds) of those points.
 
 #[allow(dead_code)]
 #[path = "../tests/common/rng.rs"]
@@ -21,6 +22,9 @@ fn main() {
     let reps: usize = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(1);
     if mode == "files" {
         return profile_files(n, reps);
+    }
+    if mode == "order" {
+        return profile_order(n, reps);
     }
     let mut points = Vec::with_capacity(2 * n);
     let mut segments = Vec::new();
@@ -120,6 +124,22 @@ fn profile_files(n: usize, reps: usize) {
             write_ele_times.0,
             write_ele_times.1,
             text.len(),
+        );
+    }
+}
+
+/// Times the default insertion order of `n` uniform points (the Delaunay mode's), `reps` times.
+fn profile_order(n: usize, reps: usize) {
+    let mut rng = SplitMix64::new(0x5EED_0001);
+    let points: Vec<[f64; 2]> = (0..n).map(|_| [rng.next_f64(), rng.next_f64()]).collect();
+    for _ in 0..reps {
+        let (start, cpu) = (Instant::now(), cpu_seconds());
+        let order = triangle_rs::algorithms::delaunay::order::multiscale_order(&points);
+        println!(
+            "order n={n}: wall {:.3} s, cpu {:.3} s (first {:?})",
+            start.elapsed().as_secs_f64(),
+            cpu_seconds() - cpu,
+            &order[..3]
         );
     }
 }
