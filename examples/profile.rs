@@ -2,6 +2,9 @@
 //! on the benchmarks' inputs, without the reference library and without the benchmarks'
 //! interleaving. `cargo run --release --example profile -- cdt 100000 3` (mode `cdt` or
 //! `delaunay`, size, repetitions; `SWITCHES` overrides the switches). Prints each run's times.
+//! Mode `files` profiles the command-line program's file work on the Delaunay input in memory:
+//! writing its `.node` text, reading it back, and writing the `.ele` of its triangulation. Mode
+//! `order` times the default insertion order (Hilbert curve in random rounds) of those points.
 
 #[allow(dead_code)]
 #[path = "../tests/common/rng.rs"]
@@ -17,6 +20,12 @@ fn main() {
     let mode = args.get(1).map_or("cdt", String::as_str);
     let n: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(100_000);
     let reps: usize = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(1);
+    if mode == "files" {
+        return profile_files(n, reps);
+    }
+    if mode == "order" {
+        return profile_order(n, reps);
+    }
     let mut points = Vec::with_capacity(2 * n);
     let mut segments = Vec::new();
     let default_switches = match mode {
@@ -60,6 +69,77 @@ fn main() {
             start.elapsed().as_secs_f64(),
             cpu_seconds() - cpu,
             output.triangle_count
+        );
+    }
+}
+
+/// Times writing the `.node` text of `n` uniform points (the Delaunay mode's), reading it back
+/// and writing the `.ele` text of their triangulation, each `reps` times (the writers write to
+/// a sink).
+fn profile_files(n: usize, reps: usize) {
+    use triangle_rs::io::files::{read_node, write_ele, write_node, EleData, NodeData};
+    let mut rng = SplitMix64::new(0x5EED_0001);
+    let points: Vec<f64> = (0..2 * n).map(|_| rng.next_f64()).collect();
+    let markers = vec![0; n];
+    let node = NodeData {
+        points: &points,
+        markers: Some(&markers),
+        ..NodeData::default()
+    };
+    let options = Options::parse("Qz", SwitchSource::Library).expect("switches");
+    let input = Input {
+        points: &points,
+        ..Input::default()
+    };
+    let (output, _) =
+        triangle_rs::triangulate(&options, &input, &Hooks::default()).expect("triangulate");
+    let triangles = output.triangles.expect("triangles");
+    let ele = EleData {
+        corners: 3,
+        triangles: &triangles,
+        ..EleData::default()
+    };
+    let mut text = Vec::with_capacity(48 * n);
+    write_node(&mut text, &node, 0, None).expect("in memory");
+    let text = String::from_utf8(text).expect("ASCII");
+    for _ in 0..reps {
+        // Written to a sink: the times leave out the page faults of a fresh buffer.
+        let (start, cpu) = (Instant::now(), cpu_seconds());
+        write_node(&mut std::io::sink(), &node, 0, None).expect("to a sink");
+        let write_node_times = (start.elapsed().as_secs_f64(), cpu_seconds() - cpu);
+        let (start, cpu) = (Instant::now(), cpu_seconds());
+        let read = read_node(&text, "points.node").expect("read back");
+        let read_times = (start.elapsed().as_secs_f64(), cpu_seconds() - cpu);
+        assert!(read.points == points, "the points read back differ");
+        let (start, cpu) = (Instant::now(), cpu_seconds());
+        write_ele(&mut std::io::sink(), &ele, 0, None).expect("to a sink");
+        let write_ele_times = (start.elapsed().as_secs_f64(), cpu_seconds() - cpu);
+        println!(
+            "files n={n}: write .node {:.3} s (cpu {:.3}), read .node {:.3} s (cpu {:.3}), \
+             write .ele {:.3} s (cpu {:.3}); .node {} bytes",
+            write_node_times.0,
+            write_node_times.1,
+            read_times.0,
+            read_times.1,
+            write_ele_times.0,
+            write_ele_times.1,
+            text.len(),
+        );
+    }
+}
+
+/// Times the default insertion order of `n` uniform points (the Delaunay mode's), `reps` times.
+fn profile_order(n: usize, reps: usize) {
+    let mut rng = SplitMix64::new(0x5EED_0001);
+    let points: Vec<[f64; 2]> = (0..n).map(|_| [rng.next_f64(), rng.next_f64()]).collect();
+    for _ in 0..reps {
+        let (start, cpu) = (Instant::now(), cpu_seconds());
+        let order = triangle_rs::algorithms::delaunay::order::multiscale_order(&points);
+        println!(
+            "order n={n}: wall {:.3} s, cpu {:.3} s (first {:?})",
+            start.elapsed().as_secs_f64(),
+            cpu_seconds() - cpu,
+            &order[..3]
         );
     }
 }

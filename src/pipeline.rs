@@ -42,10 +42,23 @@ fn checked_points(input: &Input<'_>) -> Result<Vec<Point>, Error> {
             value: input.point_attribute_count as i64,
         });
     }
-    let points: Vec<Point> = input.points.chunks_exact(2).map(|c| [c[0], c[1]]).collect();
-    if let Some(i) = points
-        .iter()
-        .position(|p| !(p[0].is_finite() && p[1].is_finite()))
+    // Copied and checked in one pass; the culprit is looked for only if there is one.
+    let mut all_finite = true;
+    let points: Vec<Point> = input
+        .points
+        .chunks_exact(2)
+        .map(|c| {
+            all_finite &= c[0].is_finite() & c[1].is_finite();
+            [c[0], c[1]]
+        })
+        .collect();
+    if let Some(i) = (!all_finite)
+        .then(|| {
+            points
+                .iter()
+                .position(|p| !(p[0].is_finite() && p[1].is_finite()))
+        })
+        .flatten()
     {
         return Err(Error::NonFinite {
             what: "Vertex",
@@ -152,9 +165,19 @@ impl ScaledInput {
         let mut options = options.clone();
         options.max_area = options.max_area.map(|a| scaling.scale_area(a));
         let mut limit: f64 = 1.0;
-        for p in &mut points {
-            *p = p.map(|x| scaling.scale(x));
-            limit = limit.max(p[0].abs()).max(p[1].abs());
+        if scaling.is_identity() {
+            // Finite coordinates: a plain comparison finds the largest magnitude.
+            for &x in points.as_flattened() {
+                let magnitude = x.abs();
+                if magnitude > limit {
+                    limit = magnitude;
+                }
+            }
+        } else {
+            for p in &mut points {
+                *p = p.map(|x| scaling.scale(x));
+                limit = limit.max(p[0].abs()).max(p[1].abs());
+            }
         }
         // Beyond every vertex coordinate (a power of two times `limit` is exact).
         limit *= 4.0;

@@ -109,24 +109,27 @@ pub struct Scaling {
 impl Scaling {
     /// The scaling for the points (x, y pairs), or the error that no scaling makes them safe.
     pub fn for_points(points: &[Point]) -> Result<Scaling, Error> {
-        // (exponent, vertex) of the largest magnitude and of the finest bit.
-        let mut hi: Option<(i32, usize)> = None;
-        let mut lo: Option<(i32, usize)> = None;
-        for (v, p) in points.iter().enumerate() {
-            for &x in p.iter().filter(|x| **x != 0.0) {
-                let (e, b) = (exponent(x), lowest_bit(x));
-                if hi.is_none_or(|(h, _)| e > h) {
-                    hi = Some((e, v));
-                }
-                if lo.is_none_or(|(l, _)| b < l) {
-                    lo = Some((b, v));
-                }
-            }
+        // The largest magnitude's exponent and the finest bit, in one pass without branches on
+        // the data (a zero has no bits: it leaves both alone).
+        let (mut hi, mut lo) = (i32::MIN, i32::MAX);
+        for &x in points.as_flattened() {
+            let nonzero = x != 0.0;
+            hi = hi.max(if nonzero { exponent(x) } else { i32::MIN });
+            lo = lo.min(if nonzero { lowest_bit(x) } else { i32::MAX });
         }
-        let (Some((hi, big)), Some((lo, fine))) = (hi, lo) else {
+        if hi == i32::MIN {
             return Ok(Scaling::default());
-        };
+        }
         if hi - lo > LARGEST_BIT_SPAN {
+            // The first vertices that have them, for the message.
+            let first_with = |has: &dyn Fn(f64) -> bool| {
+                points
+                    .iter()
+                    .position(|p| p.iter().any(|&x| x != 0.0 && has(x)))
+                    .unwrap_or(0)
+            };
+            let big = first_with(&|x| exponent(x) == hi);
+            let fine = first_with(&|x| lowest_bit(x) == lo);
             return Err(Error::CoordinateRange(format!(
                 "The vertex coordinates span too many binary orders of magnitude for exact arithmetic: \
                  vertex {big} has a coordinate of magnitude 2^{hi} and vertex {fine} one whose lowest bit is 2^{lo}, \

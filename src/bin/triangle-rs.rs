@@ -13,8 +13,8 @@ use std::process::ExitCode;
 
 use triangle_rs::data::{Hooks, Input, Output, Phase, Progress, ProgressFn, VoronoiOutput};
 use triangle_rs::io::files::{
-    next_iteration_name, plan_outputs, read_inputs, repeated_path, split_input_name, FileError,
-    InputFiles, PlannedFile,
+    next_iteration_name, plan_outputs, read_inputs, read_text_file, repeated_path,
+    split_input_name, FileError, InputFiles, PlannedFile,
 };
 use triangle_rs::io::svg::{write_svg, SvgScene, SvgVoronoi};
 use triangle_rs::options::{Options, SwitchSource};
@@ -236,19 +236,15 @@ fn parse_arguments(args: &[String]) -> Result<Arguments, Failure> {
     Ok(parsed)
 }
 
-/// Reads a whole file as text (invalid UTF-8 in comments is tolerated).
+/// Reads a whole input file as text.
 fn read_text(path: &str, quiet: bool) -> Result<String, FileError> {
     if !quiet {
         println!("Opening {path}.");
     }
-    let bytes = fs::read(path).map_err(|e| FileError {
+    read_text_file(Path::new(path)).map_err(|e| FileError {
         file: path.into(),
         line: None,
         message: format!("cannot read it: {e}"),
-    })?;
-    Ok(match String::from_utf8(bytes) {
-        Ok(text) => text,
-        Err(e) => String::from_utf8_lossy(e.as_bytes()).into_owned(),
     })
 }
 
@@ -419,6 +415,10 @@ fn run(args: &[String]) -> Result<(), Failure> {
     if !quiet {
         print_statistics(&options, &input, &mesh);
     }
+    // The process ends: unmapping the large arrays one by one would only cost time.
+    drop(planned);
+    std::mem::forget((mesh, voronoi));
+    std::mem::forget(inputs);
     Ok(())
 }
 

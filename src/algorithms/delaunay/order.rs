@@ -83,9 +83,8 @@ const HILBERT_TABLE: [[u16; 256]; 4] = {
     table
 };
 
-/// Every point's Hilbert-curve key (over the points' bounding box) in the high half of a word
-/// whose low half is the point's index.
-fn hilbert_keyed_indices(points: &[Point]) -> Vec<u64> {
+/// The Hilbert-curve key of each point over the points' bounding box, as a function of the point.
+fn hilbert_key_of(points: &[Point]) -> impl Fn(Point) -> u32 {
     let (mut xmin, mut ymin, mut xmax, mut ymax) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
     for p in points {
         xmin = xmin.min(p[0]);
@@ -104,15 +103,21 @@ fn hilbert_keyed_indices(points: &[Point]) -> Vec<u64> {
     } else {
         0.0
     };
+    move |p: Point| {
+        let x = ((p[0] - xmin) * scale_x) as u32;
+        let y = ((p[1] - ymin) * scale_y) as u32;
+        hilbert_index(x.min(cells as u32), y.min(cells as u32))
+    }
+}
+
+/// Every point's Hilbert-curve key (over the points' bounding box) in the high half of a word
+/// whose low half is the point's index.
+fn hilbert_keyed_indices(points: &[Point]) -> Vec<u64> {
+    let key = hilbert_key_of(points);
     points
         .iter()
         .enumerate()
-        .map(|(i, p)| {
-            let x = ((p[0] - xmin) * scale_x) as u32;
-            let y = ((p[1] - ymin) * scale_y) as u32;
-            let key = hilbert_index(x.min(cells as u32), y.min(cells as u32));
-            (u64::from(key) << 32) | i as u64
-        })
+        .map(|(i, &p)| (u64::from(key(p)) << 32) | i as u64)
         .collect()
 }
 
@@ -179,21 +184,107 @@ pub fn brio_order(points: &[Point], seed: u64) -> Vec<u32> {
     rounds_in_hilbert_order(points, seed, 1)
 }
 
+/// Rounds of the orders: more than enough for any point count (the first rounds stay empty).
+const ROUNDS: usize = 32;
+
+/// The round of the next point: round r from the last takes each point with probability
+/// (1 − q)·q^r, q = 2^−`growth_bits`: the number of trailing zero bits of a uniform random word,
+/// in steps of `growth_bits`.
+fn next_round(state: &mut u64, growth_bits: u32) -> u32 {
+    let from_last = (splitmix64(state).trailing_zeros() / growth_bits).min(ROUNDS as u32 - 1);
+    ROUNDS as u32 - 1 - from_last
+}
+
 /// All point indices in random rounds, each in Hilbert order; the last round holds a fraction
 /// 1 − 2^−`growth_bits` of the points, the one before it that fraction of the rest, and so on.
-/// Deterministic for a given `seed`. Linear time: the Hilbert order by radix sort, then a
-/// stable counting sort by round.
+/// Deterministic for a given `seed`: point i's round comes from the i-th number of the seeded
+/// generator. Within a round, points with equal keys come in input order.
+///
+/// Linear time, in one word per point that holds its round (5 bits), its Hilbert key (32) and
+/// its index (27): sorting the words sorts by round, then key, then index. One counting pass
+/// scatters them by round and the key's top 8 bits (buckets of a few thousand words at 10^6
+/// points); each bucket is then sorted where it lies in the cache, by radix passes over the
+/// key's low 24 bits (the buckets keep the input order of the words, and the passes are
+/// stable). Against three radix passes over all the words and a pass by round, this moves the
+/// words through memory once.
 fn rounds_in_hilbert_order(points: &[Point], seed: u64, growth_bits: u32) -> Vec<u32> {
-    const ROUNDS: usize = 32;
+    const INDEX_BITS: u32 = 27;
+    const TOP_BITS: u32 = 8;
+    if points.len() >= 1 << INDEX_BITS {
+        return rounds_in_hilbert_order_by_passes(points, seed, growth_bits);
+    }
+    let key = hilbert_key_of(points);
     let mut state = seed;
-    // Round r from the last takes each point with probability (1 − q)·q^r, q = 2^−growth_bits:
-    // the number of trailing zero bits of a uniform random word, in steps of `growth_bits`.
-    let round_of: Vec<u8> = (0..points.len())
-        .map(|_| {
-            let from_last =
-                (splitmix64(&mut state).trailing_zeros() / growth_bits).min(ROUNDS as u32 - 1);
-            (ROUNDS as u32 - 1 - from_last) as u8
+    let words: Vec<u64> = points
+        .iter()
+        .enumerate()
+        .map(|(i, &p)| {
+            let round = u64::from(next_round(&mut state, growth_bits));
+            (round << (32 + INDEX_BITS)) | (u64::from(key(p)) << INDEX_BITS) | i as u64
         })
+        .collect();
+    // The bucket of a word: its round and the top bits of its key.
+    let bucket = |w: u64| (w >> (32 + INDEX_BITS - TOP_BITS)) as usize;
+    let mut starts = vec![0usize; (ROUNDS << TOP_BITS) + 1];
+    for &w in &words {
+        starts[bucket(w) + 1] += 1;
+    }
+    for b in 1..starts.len() {
+        starts[b] += starts[b - 1];
+    }
+    let mut sorted = vec![0u64; words.len()];
+    let mut next = starts.clone();
+    for &w in &words {
+        let b = bucket(w);
+        sorted[next[b]] = w;
+        next[b] += 1;
+    }
+    drop(next);
+    let mut spare = words;
+    for range in starts.windows(2) {
+        sort_bucket(&mut sorted[range[0]..range[1]], &mut spare, INDEX_BITS);
+    }
+    let index_mask = (1u64 << INDEX_BITS) - 1;
+    sorted.iter().map(|&w| (w & index_mask) as u32).collect()
+}
+
+/// Sorts the words of one bucket (their top bits equal, their indices increasing) by the 24
+/// key bits above bit `index_bits`: three stable 8-bit counting passes through `spare` (small
+/// buckets by a comparison sort: the words are distinct, so any sort gives the same order).
+fn sort_bucket(words: &mut [u64], spare: &mut [u64], index_bits: u32) {
+    if words.len() <= 64 {
+        words.sort_unstable();
+        return;
+    }
+    let spare = &mut spare[..words.len()];
+    for pass in 0..3 {
+        let shift = index_bits + 8 * pass;
+        let digit = |w: u64| ((w >> shift) & 0xff) as usize;
+        let mut counts = [0usize; 257];
+        for &w in words.iter() {
+            counts[digit(w) + 1] += 1;
+        }
+        if counts.contains(&words.len()) {
+            continue; // one digit value for all words: the pass would not move anything
+        }
+        for d in 1..257 {
+            counts[d] += counts[d - 1];
+        }
+        for &w in words.iter() {
+            let d = digit(w);
+            spare[counts[d]] = w;
+            counts[d] += 1;
+        }
+        words.copy_from_slice(spare);
+    }
+}
+
+/// [`rounds_in_hilbert_order`] for 2^27 points or more (whose indices do not fit in its words):
+/// the Hilbert order by radix sort, then a stable counting sort by round.
+fn rounds_in_hilbert_order_by_passes(points: &[Point], seed: u64, growth_bits: u32) -> Vec<u32> {
+    let mut state = seed;
+    let round_of: Vec<u8> = (0..points.len())
+        .map(|_| next_round(&mut state, growth_bits) as u8)
         .collect();
     let mut starts = [0usize; ROUNDS + 1];
     for &r in &round_of {
@@ -257,6 +348,35 @@ mod tests {
                 let mut expected = keys.clone();
                 expected.sort_unstable();
                 assert_eq!(radix_sort_by_high_half(keys), expected);
+            }
+        }
+    }
+
+    /// The one-word sort gives the order of the radix passes (which large inputs use), ties and
+    /// degenerate boxes included.
+    #[test]
+    fn both_ways_of_sorting_rounds_agree() {
+        let mut s = 11;
+        let mut unit = || splitmix64(&mut s) as f64 / u64::MAX as f64;
+        let uniform: Vec<Point> = (0..200_000).map(|_| [unit(), unit()]).collect();
+        let grid: Vec<Point> = (0..50_000)
+            .map(|i| [(i % 37) as f64, ((i * 7) % 23) as f64])
+            .collect();
+        let line: Vec<Point> = (0..3000).map(|i| [1.0, i as f64 * 0.5]).collect();
+        let clustered: Vec<Point> = (0..100_000)
+            .map(|i| {
+                let c = (i % 5) as f64;
+                [c + 1e-9 * unit(), c * c + 1e-9 * unit()]
+            })
+            .collect();
+        for points in [&uniform, &grid, &line, &clustered, &uniform[..10].to_vec()] {
+            for (seed, growth) in [(1u64, 3u32), (42, 1)] {
+                assert_eq!(
+                    rounds_in_hilbert_order(points, seed, growth),
+                    rounds_in_hilbert_order_by_passes(points, seed, growth),
+                    "{} points",
+                    points.len()
+                );
             }
         }
     }

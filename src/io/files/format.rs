@@ -50,25 +50,38 @@ pub fn push_g17(out: &mut Vec<u8>, value: f64) {
         push_unsigned(out, value.abs() as u64);
         return;
     }
-    let (mut digits, exponent) = match seventeen_digits(value.abs()) {
-        Some(found) => found,
-        None => seventeen_digits_by_fmt(value.abs()),
-    };
-    // Trailing zeros are never printed by %g (without the `#` flag).
-    let mut significant = digits.len();
-    while significant > 1 && digits[significant - 1] == b'0' {
-        significant -= 1;
+    match seventeen_digits(value.abs()) {
+        Some((digits, exponent)) => push_g_layout_of_integer(out, digits, exponent),
+        None => {
+            let (digits, exponent) = seventeen_digits_by_fmt(value.abs());
+            // Trailing zeros are never printed by %g (without the `#` flag).
+            let mut significant = digits.len();
+            while significant > 1 && digits[significant - 1] == b'0' {
+                significant -= 1;
+            }
+            push_g_layout(out, &digits[..significant], exponent);
+        }
     }
-    let digits = &mut digits[..significant];
-    push_g_layout(out, digits, exponent);
 }
 
-/// The 17 significant digits of `x` (positive, finite), correctly rounded with ties to even on
-/// the exact binary value, and the decimal exponent after rounding, in integer arithmetic: `x` =
-/// m · 2^q is scaled by 10^(16 − E) exactly in 128 bits and shifted back with the remainder
-/// deciding the rounding. `None` outside the range where that fits (decimal exponents from −6 to
-/// 16 and q ≤ 0: every coordinate of ordinary magnitude); the caller then uses `fmt`.
-fn seventeen_digits(x: f64) -> Option<([u8; 17], i32)> {
+/// 10^k for k = 0 to 22: every power of ten that [`seventeen_digits`] scales by.
+const POWERS_OF_TEN: [u128; 23] = {
+    let mut table = [1u128; 23];
+    let mut k = 1;
+    while k < 23 {
+        table[k] = table[k - 1] * 10;
+        k += 1;
+    }
+    table
+};
+
+/// The 17 significant digits of `x` (positive, finite) as an integer from 10^16 to 10^17 − 1,
+/// correctly rounded with ties to even on the exact binary value, and the decimal exponent
+/// after rounding, in integer arithmetic: `x` = m · 2^q is scaled by 10^(16 − E) exactly in 128
+/// bits and shifted back with the remainder deciding the rounding. `None` outside the range
+/// where that fits (decimal exponents from −6 to 16 and q ≤ 0: every coordinate of ordinary
+/// magnitude); the caller then uses `fmt`.
+fn seventeen_digits(x: f64) -> Option<(u64, i32)> {
     const TEN16: u128 = 10_000_000_000_000_000;
     let bits = x.to_bits();
     let biased = ((bits >> 52) & 0x7ff) as i32;
@@ -81,13 +94,16 @@ fn seventeen_digits(x: f64) -> Option<([u8; 17], i32)> {
         return None;
     }
     let shift = (-q) as u32;
-    // A first guess of E = floor(log10 x), corrected below against the exact value.
-    let mut e = x.log10().floor() as i32;
+    // A first guess of E = floor(log10 x) from the binary exponent: x lies in [2^k, 2^(k+1))
+    // with k = q + 52, and floor(k · log10 2) = (k · 78913) >> 18 for |k| < 1000; E is that or
+    // one more. The loop below checks it against the exact value (from −6: below that the
+    // table has no power, and the check steps down to −7 and gives up).
+    let mut e = (((q + 52) * 78913) >> 18).max(-6);
     for _ in 0..3 {
         if !(-6..=16).contains(&e) || shift >= 128 {
             return None;
         }
-        let scaled = m * 10u128.pow((16 - e) as u32); // < 2^53 · 10^22 < 2^127
+        let scaled = m * POWERS_OF_TEN[(16 - e) as usize]; // < 2^53 · 10^22 < 2^127
         let whole = scaled >> shift;
         if whole < TEN16 {
             e -= 1;
@@ -105,10 +121,7 @@ fn seventeen_digits(x: f64) -> Option<([u8; 17], i32)> {
             rounded = TEN16;
             e += 1;
         }
-        let (text, start) = unsigned_digits(rounded as u64);
-        let mut digits = [0u8; 17];
-        digits.copy_from_slice(&text[start..]);
-        return Some((digits, e));
+        return Some((rounded as u64, e));
     }
     None
 }
@@ -154,13 +167,7 @@ fn push_g_layout(out: &mut Vec<u8>, digits: &[u8], exponent: i32) {
             out.push(b'.');
             out.extend_from_slice(&digits[1..]);
         }
-        out.push(b'e');
-        out.push(if exponent < 0 { b'-' } else { b'+' });
-        let magnitude = exponent.unsigned_abs();
-        if magnitude < 10 {
-            out.push(b'0');
-        }
-        push_unsigned(out, magnitude as u64);
+        push_exponent(out, exponent);
     } else if exponent >= 0 {
         let integer_digits = exponent as usize + 1;
         if digits.len() <= integer_digits {
@@ -178,6 +185,102 @@ fn push_g_layout(out: &mut Vec<u8>, digits: &[u8], exponent: i32) {
     }
 }
 
+/// `%g`'s exponent: `e`, its sign, and at least two digits.
+fn push_exponent(out: &mut Vec<u8>, exponent: i32) {
+    out.push(b'e');
+    out.push(if exponent < 0 { b'-' } else { b'+' });
+    let magnitude = exponent.unsigned_abs();
+    if magnitude < 10 {
+        out.push(b'0');
+    }
+    push_unsigned(out, magnitude as u64);
+}
+
+/// [`push_g_layout`] for the 17 digits of `digits` (10^16 ≤ `digits` < 10^17) with decimal
+/// `exponent` from −6 to 16 (what [`seventeen_digits`] gives), written in place: the digits go
+/// straight to their final bytes (no copy through a stack buffer, whose narrow stores read back
+/// wide would stall the store forwarding), the point is put in by moving the integer digits
+/// one place left, and trailing zeros are cut off.
+fn push_g_layout_of_integer(out: &mut Vec<u8>, digits: u64, exponent: i32) {
+    // Room for the longest layout, "0.000" and 17 digits; truncated below.
+    let at = out.len();
+    out.extend_from_slice(&[b'0'; 24]);
+    let text = &mut out[at..];
+    let (first_digit, end) = match exponent {
+        // 17 integer digits: nothing after them, no point.
+        16 => {
+            write_17_digits(text, 0, digits);
+            out.truncate(at + 17);
+            return;
+        }
+        0..=15 => {
+            let point = exponent as usize + 1;
+            write_17_digits(text, 1, digits);
+            text.copy_within(1..=point, 0);
+            text[point] = b'.';
+            (point + 1, 18)
+        }
+        -4..=-1 => {
+            // "0." and −exponent − 1 zeros (already in place) before the digits.
+            let start = 1 + exponent.unsigned_abs() as usize;
+            text[1] = b'.';
+            write_17_digits(text, start, digits);
+            (start + 1, start + 17)
+        }
+        _ => {
+            // d.dddddddddddddddde-0x (only −6 and −5 reach here).
+            write_17_digits(text, 1, digits);
+            text[0] = text[1];
+            text[1] = b'.';
+            (2, 18)
+        }
+    };
+    let mut end = end;
+    while end > first_digit && text[end - 1] == b'0' {
+        end -= 1;
+    }
+    if text[end - 1] == b'.' {
+        end -= 1;
+    }
+    out.truncate(at + end);
+    if exponent < -4 {
+        push_exponent(out, exponent);
+    }
+}
+
+/// Two decimal digits per entry, for 0 to 99 (values of 10^8 and more).
+const PAIRS: &[u8; 200] = b"0001020304050607080910111213141516171819\
+                            2021222324252627282930313233343536373839\
+                            4041424344454647484950515253545556575859\
+                            6061626364656667686970717273747576777879\
+                            8081828384858687888990919293949596979899";
+
+/// The 8 decimal digits of `value` (below 10^8, leading zeros included) as ASCII bytes in a
+/// little-endian word (the first digit in the lowest byte), computed in parallel within the
+/// word (SWAR): the two 4-digit halves in 32-bit lanes, split into pairs in 16-bit lanes, then
+/// into digits in bytes. Each split divides by 100 or 10 with a multiply and shift that is exact
+/// for the lane's range (n·10486 >> 20 = ⌊n/100⌋ for n < 10^4; m·103 >> 10 = ⌊m/10⌋ for
+/// m < 100) and whose products stay inside their lanes.
+#[inline(always)]
+fn eight_digits(value: u32) -> u64 {
+    let value = u64::from(value);
+    let halves = (value / 10_000) | ((value % 10_000) << 32);
+    let hundreds = ((halves * 10_486) >> 20) & 0x0000_007f_0000_007f;
+    let pairs = hundreds | ((halves - hundreds * 100) << 16);
+    let tens = ((pairs * 103) >> 10) & 0x000f_000f_000f_000f;
+    let digits = tens | ((pairs - tens * 10) << 8);
+    digits | 0x3030_3030_3030_3030
+}
+
+/// Writes `value` (below 10^17) as exactly 17 digits at `text[at..at + 17]`.
+#[inline(always)]
+fn write_17_digits(text: &mut [u8], at: usize, value: u64) {
+    let (high, low) = (value / 100_000_000, (value % 100_000_000) as u32);
+    text[at] = b'0' + (high / 100_000_000) as u8;
+    text[at + 1..at + 9].copy_from_slice(&eight_digits((high % 100_000_000) as u32).to_le_bytes());
+    text[at + 9..at + 17].copy_from_slice(&eight_digits(low).to_le_bytes());
+}
+
 /// `value` as `%.17g` in a new `String` (tests, messages).
 pub fn g17(value: f64) -> String {
     let mut out = Vec::with_capacity(24);
@@ -185,43 +288,62 @@ pub fn g17(value: f64) -> String {
     String::from_utf8(out).expect("ASCII")
 }
 
-/// The decimal digits of `value`, right-aligned in a stack buffer: (buffer, index of the first
-/// digit). Two digits per division, and 32-bit divisions while the value fits (most indices).
-fn unsigned_digits(mut value: u64) -> ([u8; 20], usize) {
-    const PAIRS: &[u8; 200] = b"0001020304050607080910111213141516171819\
-                                2021222324252627282930313233343536373839\
-                                4041424344454647484950515253545556575859\
-                                6061626364656667686970717273747576777879\
-                                8081828384858687888990919293949596979899";
-    let mut digits = [0u8; 20];
-    let mut start = digits.len();
-    while value > u32::MAX as u64 {
+/// The number of decimal digits of `value` (1 for 0): from its bit length, which gives the
+/// digit count or one more, and one comparison.
+fn decimal_length(value: u64) -> usize {
+    const POWERS: [u64; 20] = {
+        let mut table = [1u64; 20];
+        let mut k = 1;
+        while k < 20 {
+            table[k] = table[k - 1] * 10;
+            k += 1;
+        }
+        table
+    };
+    let bits = 64 - (value | 1).leading_zeros();
+    // ⌊bits · log10 2⌋ (1233 / 4096 ≈ log10 2): the number of digits of 2^(bits−1), minus one.
+    let guess = ((bits * 1233) >> 12) as usize;
+    guess + usize::from((value | 1) >= POWERS[guess])
+}
+
+/// Appends the decimal digits of `value`: below 10^8 (vertex and triangle numbers) as
+/// [`eight_digits`] with the leading zeros shifted out, one 8-byte store; larger values from
+/// the last digit back, two at a time.
+fn push_unsigned(out: &mut Vec<u8>, value: u64) {
+    if value < 100_000_000 {
+        let digits = eight_digits(value as u32);
+        // Leading zero digits are the low bytes that hold b'0' (a lone 0 keeps one).
+        let zeros = (((digits ^ 0x3030_3030_3030_3030).trailing_zeros() / 8) as usize).min(7);
+        let at = out.len();
+        out.extend_from_slice(&(digits >> (8 * zeros)).to_le_bytes());
+        out.truncate(at + 8 - zeros);
+        return;
+    }
+    let length = decimal_length(value);
+    let at = out.len();
+    out.extend_from_slice(&[b'0'; 20]);
+    let text = &mut out[at..at + length];
+    let mut end = length;
+    let mut value = value;
+    while value > u64::from(u32::MAX) {
         let pair = (value % 100) as usize;
         value /= 100;
-        start -= 2;
-        digits[start..start + 2].copy_from_slice(&PAIRS[2 * pair..2 * pair + 2]);
+        end -= 2;
+        text[end..end + 2].copy_from_slice(&PAIRS[2 * pair..2 * pair + 2]);
     }
     let mut small = value as u32;
     while small >= 100 {
         let pair = (small % 100) as usize;
         small /= 100;
-        start -= 2;
-        digits[start..start + 2].copy_from_slice(&PAIRS[2 * pair..2 * pair + 2]);
+        end -= 2;
+        text[end..end + 2].copy_from_slice(&PAIRS[2 * pair..2 * pair + 2]);
     }
     if small >= 10 {
-        start -= 2;
-        digits[start..start + 2]
-            .copy_from_slice(&PAIRS[2 * small as usize..2 * small as usize + 2]);
+        text[end - 2..end].copy_from_slice(&PAIRS[2 * small as usize..2 * small as usize + 2]);
     } else {
-        start -= 1;
-        digits[start] = b'0' + small as u8;
+        text[end - 1] = b'0' + small as u8;
     }
-    (digits, start)
-}
-
-fn push_unsigned(out: &mut Vec<u8>, value: u64) {
-    let (digits, start) = unsigned_digits(value);
-    out.extend_from_slice(&digits[start..]);
+    out.truncate(at + length);
 }
 
 /// Appends `value` as C's `%d`.
@@ -231,8 +353,8 @@ pub fn push_int(out: &mut Vec<u8>, value: i64) {
 
 /// Appends `value` as C's `%<width>d`: right-aligned, padded with spaces, never truncated.
 pub fn push_int_width(out: &mut Vec<u8>, value: i64, width: usize) {
-    let (digits, start) = unsigned_digits(value.unsigned_abs());
-    let length = digits.len() - start + usize::from(value < 0);
+    let magnitude = value.unsigned_abs();
+    let length = decimal_length(magnitude) + usize::from(value < 0);
     const SPACES: [u8; 16] = [b' '; 16];
     let mut pad = width.saturating_sub(length);
     while pad > 0 {
@@ -243,7 +365,7 @@ pub fn push_int_width(out: &mut Vec<u8>, value: i64, width: usize) {
     if value < 0 {
         out.push(b'-');
     }
-    out.extend_from_slice(&digits[start..]);
+    push_unsigned(out, magnitude);
 }
 
 #[cfg(test)]
@@ -372,6 +494,73 @@ mod tests {
             }
         }
         assert!(fast > 80_000, "the integer path took only {fast} values");
+    }
+
+    /// Decimal exponents change at powers of ten: the first guess of the exponent (from the
+    /// binary one) is one short just above them. Powers of ten and their neighbouring doubles.
+    #[test]
+    fn agrees_with_glibc_around_powers_of_ten() {
+        for k in -9..=19 {
+            let power = 10f64.powi(k);
+            let mut value = power;
+            for _ in 0..3 {
+                value = f64::from_bits(value.to_bits() - 1);
+            }
+            for _ in 0..7 {
+                assert_eq!(
+                    g17(value),
+                    c_g17(value),
+                    "value bits {:#x}",
+                    value.to_bits()
+                );
+                value = f64::from_bits(value.to_bits() + 1);
+            }
+        }
+    }
+
+    #[test]
+    fn eight_digits_and_unsigned_integers() {
+        let check = |value: u64| {
+            let mut out = b"x".to_vec();
+            push_unsigned(&mut out, value);
+            assert_eq!(out, format!("x{value}").into_bytes(), "{value}");
+            if value < 100_000_000 {
+                let digits = eight_digits(value as u32).to_le_bytes();
+                assert_eq!(digits, *format!("{value:08}").as_bytes(), "{value}");
+            }
+        };
+        (0..200_000).for_each(check);
+        let mut state: u64 = 0x9e37_79b9_7f4a_7c15;
+        for _ in 0..200_000 {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            check(state >> (state % 64));
+            check((state >> 32) % 100_000_000);
+        }
+        for value in [
+            99_999_999,
+            100_000_000,
+            100_000_001,
+            10_000_000,
+            9_999_999,
+            u64::MAX,
+        ] {
+            check(value);
+        }
+    }
+
+    #[test]
+    fn decimal_lengths() {
+        let mut power = 1u64;
+        for digits in 1..=19 {
+            assert_eq!(decimal_length(power), digits);
+            assert_eq!(decimal_length(power - 1), (digits - 1).max(1));
+            assert_eq!(decimal_length(power + 1), digits);
+            power *= 10;
+        }
+        assert_eq!(decimal_length(u64::MAX), 20);
+        assert_eq!(decimal_length(0), 1);
     }
 
     #[test]

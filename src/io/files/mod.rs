@@ -8,12 +8,14 @@
 //! reference program's.
 
 pub mod format;
+pub mod load;
 pub mod naming;
 pub mod plan;
 pub mod read;
 pub mod write;
 
 pub use format::{g17, push_g17};
+pub use load::{read_file, read_text_file};
 pub use naming::{next_iteration_name, split_input_name, InputName};
 pub use plan::{plan_outputs, read_inputs, repeated_path, FileWriter, InputFiles, PlannedFile};
 pub use read::{

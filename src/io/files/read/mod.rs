@@ -18,12 +18,15 @@
 
 use std::fmt;
 
-// The parts: this file holds the readers of each format; `records` the lines, fields and numbers.
+// The parts: this file holds the readers of each format; `records` the lines, fields and numbers;
+// `vertices` the vertex section, which has a fast path for large files.
 mod records;
 #[cfg(test)]
 mod tests;
+mod vertices;
 
-use records::{reserve, Lines, Record};
+use records::{reserve, Lines};
+use vertices::read_vertices;
 
 /// A problem in an input file: which file, which line (1-based, if one is to blame), and what.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -147,56 +150,6 @@ pub struct OffFile {
 
 // ------------------------------------------------------------------------------------------------
 // Readers
-
-/// Reads the vertex header (already taken from `lines` as `header`) and the vertices.
-fn read_vertices(lines: &mut Lines<'_>, mut header: Record<'_>) -> Result<NodeFile, FileError> {
-    let count = header.count(format_args!("the number of vertices"))?;
-    let dimension = header
-        .optional_integer(format_args!("the dimension"))?
-        .unwrap_or(2);
-    if dimension != 2 {
-        return Err(header.error(format!(
-            "the dimension is {dimension}, but triangle-rs only works with two-dimensional meshes"
-        )));
-    }
-    let attribute_count = header
-        .optional_count(format_args!("the number of vertex attributes"))?
-        .unwrap_or(0);
-    let has_markers = header
-        .optional_count(format_args!("the number of boundary markers"))?
-        .unwrap_or(0)
-        != 0;
-    let mut node = NodeFile {
-        first_number: None,
-        points: Vec::with_capacity(reserve(count, 2)),
-        attribute_count,
-        attributes: Vec::with_capacity(reserve(count, attribute_count)),
-        markers: has_markers.then(|| Vec::with_capacity(reserve(count, 1))),
-    };
-    for k in 0..count {
-        let mut record = lines.expect_record(format_args!("vertex {} of {count}", k + 1))?;
-        let number = record.integer(format_args!("the vertex number"))?;
-        if k == 0 {
-            node.first_number = Some(number);
-        }
-        let x = record.real(format_args!("the x coordinate of vertex {number}"))?;
-        let y = record.real(format_args!("the y coordinate of vertex {number}"))?;
-        node.points.extend_from_slice(&[x, y]);
-        for a in 0..attribute_count {
-            let value =
-                record.optional_real(format_args!("attribute {} of vertex {number}", a + 1))?;
-            node.attributes.push(value.unwrap_or(0.0));
-        }
-        if let Some(markers) = node.markers.as_mut() {
-            markers.push(
-                record
-                    .optional_int32(format_args!("the marker of vertex {number}"))?
-                    .unwrap_or(0),
-            );
-        }
-    }
-    Ok(node)
-}
 
 /// Reads a `.node` file (also `.v.node`). `file` names it in errors.
 pub fn read_node(text: &str, file: &str) -> Result<NodeFile, FileError> {

@@ -4,6 +4,7 @@
 use super::*;
 
 /// The lines of a file, skipping those without data.
+#[derive(Clone, Copy)]
 pub(super) struct Lines<'a> {
     file: &'a str,
     text: &'a str,
@@ -34,6 +35,36 @@ impl<'a> Lines<'a> {
             position: 0,
             line_number: 0,
         }
+    }
+
+    /// Where the next line starts (a byte offset into the text).
+    pub(super) fn position(&self) -> usize {
+        self.position
+    }
+
+    /// The number of the line read last (0 before the first).
+    pub(super) fn line_number(&self) -> usize {
+        self.line_number
+    }
+
+    /// The whole text.
+    pub(super) fn text(&self) -> &'a str {
+        self.text
+    }
+
+    /// These lines as far as byte `end` (a line start): a reader of one part of the text, which
+    /// numbers its lines on from here.
+    pub(super) fn ending_at(&self, end: usize) -> Lines<'a> {
+        Lines {
+            text: &self.text[..end],
+            ..*self
+        }
+    }
+
+    /// Moves past `lines` lines that end at byte `position` (a line start), read elsewhere.
+    pub(super) fn skip_read_lines(&mut self, position: usize, lines: usize) {
+        self.position = position;
+        self.line_number += lines;
     }
 
     pub(super) fn error(&self, line: Option<usize>, message: String) -> FileError {

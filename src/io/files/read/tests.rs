@@ -181,3 +181,204 @@ fn output_formats_read_back() {
     assert_eq!(off.triangles, vec![0, 1, 2]);
     assert_eq!(off.edge_count, 3);
 }
+
+/// A small seeded generator for the tests below.
+fn next(state: &mut u64) -> u64 {
+    *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    let mut z = *state;
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+/// A real in one of many spellings, most of them plain.
+fn spelled_real(state: &mut u64) -> String {
+    let x = (next(state) >> 11) as f64 / (1u64 << 53) as f64;
+    let spellings = [
+        crate::io::files::g17(x),
+        crate::io::files::g17(-x * 1e6),
+        format!("{x:e}"),
+        format!("{:E}", x * 1e-300),
+        format!("{:.3}", x * 100.0),
+        format!("+{:.2}", x),
+        format!("{}", (next(state) % 1000) as i64 - 500),
+        ".5".to_string(),
+        "7.".to_string(),
+        "-0".to_string(),
+        "1.e5".to_string(),
+        "2e".to_string(),
+        "0.125x".to_string(),
+        "00012.5".to_string(),
+        "123456789012345678901234567890".to_string(),
+        "0.1000000000000000055511151231257827021181583404541015625".to_string(),
+        "4.9406564584124654e-324".to_string(),
+        "1.7976931348623157e308".to_string(),
+    ];
+    let k = next(state) % 40;
+    spellings[if k < 20 {
+        0
+    } else {
+        (k as usize - 20) % spellings.len()
+    }]
+    .clone()
+}
+
+/// A `.node` text of `count` rows, most of them plain, with every kind of line the general
+/// reader accepts sprinkled in (and, with `errors`, a few that it rejects).
+fn varied_node_text(count: usize, attributes: usize, markers: bool, seed: u64) -> String {
+    let mut state = seed;
+    let mut text = format!(
+        "# header next\n{count} 2 {attributes} {}\n",
+        u8::from(markers)
+    );
+    for v in 0..count {
+        let odd = next(&mut state) % 50 == 0;
+        if odd {
+            match next(&mut state) % 6 {
+                0 => text.push('\n'),
+                1 => text.push_str("   # a comment line\n"),
+                2 => text.push_str("\t\r\n"),
+                _ => {}
+            }
+        }
+        let separator = if odd && next(&mut state) % 2 == 0 {
+            "\t"
+        } else {
+            "  "
+        };
+        let number = match next(&mut state) % 150 {
+            0 => format!("0x{:x}", v + 1),
+            1 => format!("0{:o}", v + 1),
+            2 => format!("+{}", v + 1),
+            _ => format!("{}", v + 1),
+        };
+        text.push_str(&number);
+        for _ in 0..2 + attributes {
+            text.push_str(separator);
+            text.push_str(&spelled_real(&mut state));
+        }
+        if markers && !(odd && next(&mut state) % 4 == 0) {
+            text.push_str(separator);
+            let marker = match next(&mut state) % 60 {
+                0 => "010".to_string(),
+                2 => "-0".to_string(),
+                _ => format!("{}", (next(&mut state) % 7) as i64 - 3),
+            };
+            text.push_str(&marker);
+        }
+        if odd {
+            match next(&mut state) % 5 {
+                0 => text.push_str("  # trailing comment"),
+                1 => text.push_str(" extra 1 2 3"),
+                2 => text.push('\r'),
+                _ => {}
+            }
+        }
+        text.push('\n');
+    }
+    text
+}
+
+/// Every line made unplain (a leading word that does not start like a number, which the
+/// general reader skips): read by the general reader alone.
+fn general_only(text: &str) -> String {
+    text.lines().map(|line| format!("x {line}\n")).collect()
+}
+
+#[test]
+fn plain_rows_read_as_the_general_reader_reads_them() {
+    for (count, attributes, markers) in [
+        (1, 0, false),
+        (500, 0, true),
+        (3000, 2, true),
+        (2000, 9, false),
+        (150_000, 0, true),
+        (120_000, 1, false),
+    ] {
+        let text = varied_node_text(count, attributes, markers, count as u64);
+        let fast = read_node(&text, "v.node");
+        let general = read_node(&general_only(&text), "v.node");
+        match (&fast, &general) {
+            (Ok(a), Ok(b)) => {
+                assert_eq!(a.first_number, b.first_number);
+                assert_eq!(a.markers, b.markers);
+                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&a.points), bits(&b.points), "{count} rows");
+                assert_eq!(bits(&a.attributes), bits(&b.attributes), "{count} rows");
+            }
+            _ => assert_eq!(fast, general),
+        }
+    }
+}
+
+#[test]
+fn large_sections_read_on_two_threads_keep_line_numbers_and_what_follows() {
+    // Errors before, at and after the middle of a large section name their lines.
+    let count = 200_000;
+    let text = varied_node_text(count, 0, true, 5);
+    for fraction in [0.1, 0.5, 0.50001, 0.50002, 0.9] {
+        let line = (fraction * text.lines().count() as f64) as usize;
+        let broken: String = text
+            .lines()
+            .enumerate()
+            .map(|(i, l)| {
+                if i == line && l.starts_with(|c: char| c.is_ascii_digit()) {
+                    let number = l.split_whitespace().next().unwrap();
+                    match i % 2 {
+                        0 => format!("{number} 0.5 1e999 1\n"),
+                        _ => format!("{number} 0.5 0.5 3000000000\n"),
+                    }
+                } else {
+                    format!("{l}\n")
+                }
+            })
+            .collect();
+        let fast = read_node(&broken, "b.node");
+        let general = read_node(&general_only(&broken), "b.node");
+        assert_eq!(fast, general);
+    }
+    // A file that ends early.
+    let cut = &text[..text.len() * 2 / 3];
+    let cut = &cut[..cut.rfind('\n').unwrap() + 1];
+    assert_eq!(
+        read_node(cut, "c.node"),
+        read_node(&general_only(cut), "c.node")
+    );
+    // A `.poly` file: the segments after a large vertex section are read as segments.
+    let mut poly = format!("{count} 2 0 0\n");
+    for v in 0..count {
+        poly.push_str(&format!("{} {} {}\n", v + 1, v % 1000, v / 1000));
+    }
+    poly.push_str(&format!("{count} 1\n"));
+    for s in 0..count {
+        poly.push_str(&format!("{} {} {} 1\n", s + 1, s + 1, (s + 1) % count + 1));
+    }
+    poly.push_str("0\n");
+    let read = read_poly(&poly, "p.poly", false).unwrap();
+    assert_eq!(read.vertices.point_count(), count);
+    assert_eq!(
+        read.vertices.points[2 * (count - 1)],
+        ((count - 1) % 1000) as f64
+    );
+    assert_eq!(read.segments.len(), 2 * count);
+    assert_eq!(read.segment_lines[0] as usize, count + 3);
+    // A `.poly` whose vertex section is short against its segments.
+    let mut poly = format!("{count} 2 0 0\n");
+    for v in 0..count {
+        poly.push_str(&format!("{} {} {}\n", v + 1, v, 0));
+    }
+    poly.push_str(&format!("{} 0\n", 4 * count));
+    for s in 0..4 * count {
+        poly.push_str(&format!(
+            "{} {} {}\n",
+            s + 1,
+            s % count + 1,
+            (s + 1) % count + 1
+        ));
+    }
+    poly.push_str("0\n");
+    let read = read_poly(&poly, "q.poly", false).unwrap();
+    assert_eq!(read.vertices.point_count(), count);
+    assert_eq!(read.segments.len(), 8 * count);
+    assert_eq!(read.segment_lines[0] as usize, count + 3);
+}
