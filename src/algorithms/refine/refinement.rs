@@ -190,16 +190,24 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
         }
         while !self.should_stop() {
             let Some(bad) = self.bad.pop() else { break };
-            let [a, b, c] = bad.corners;
-            let Some(e) = self.mesh().find_edge(a, b) else {
-                continue;
-            };
-            if self.mesh().apex(e) != c {
+            let Some(t) = self.still_there(bad) else {
                 continue; // gone since it was queued
-            }
-            self.split_triangle(triangle_of(e), bad);
+            };
+            self.split_triangle(t, bad);
             self.split_encroached();
         }
+    }
+
+    /// The triangle a queued bad triangle is now, if it is still there: mostly in the slot it
+    /// was queued from (one look, where finding the edge takes a turn around a vertex).
+    fn still_there(&self, bad: BadTriangle) -> Option<u32> {
+        let mesh = self.mesh();
+        if bad.slot < mesh.triangle_count() && mesh.triangle(bad.slot) == bad.corners {
+            return Some(bad.slot);
+        }
+        let [a, b, c] = bad.corners;
+        let e = mesh.find_edge(a, b)?;
+        (mesh.apex(e) == c).then_some(triangle_of(e))
     }
 
     /// Whether to stop: the caller cancelled (polled now and then), or the limit is reached.
@@ -317,7 +325,11 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
                 Some(shortest) => BadQueue::skinny_bucket(shortest / self.settings.extent2),
                 None => BadQueue::SIZE_BUCKET,
             };
-            self.bad.push(BadTriangle { bucket, corners });
+            self.bad.push(BadTriangle {
+                bucket,
+                corners,
+                slot: t,
+            });
         }
     }
 
