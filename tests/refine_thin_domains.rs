@@ -123,7 +123,7 @@ fn the_fuzzed_case_keeps_its_area() {
         [18.13, 5.439],
         [17.759999999999998, 5.328000000000001],
     ];
-    let segments = vec![[8, 9], [2, 7], [10, 1], [1, 12], [6, 7], [13, 6]];
+    let segments = [[8, 9], [2, 7], [10, 1], [1, 12], [6, 7], [13, 6]];
     let input = MeshInput {
         segments: segments
             .iter()
