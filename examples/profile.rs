@@ -1,6 +1,7 @@
 //! A driver for profilers (`perf record`, `valgrind --tool=callgrind`): runs our `triangulate`
 //! on the benchmarks' inputs, without the reference library and without the benchmarks'
-//! interleaving. `cargo run --release --example profile -- cdt 100000 3` (mode `cdt` or
+//! interleaving. `cargo run --release --example profile -- cdt 100000 3` (mode `cdt`, `hole`
+//! (the square with a hole of benches/refine.rs; size: the circle's segments, 256 there) or
 //! `delaunay`, size, repetitions; `SWITCHES` overrides the switches). Prints each run's times.
 //! Mode `files` profiles the command-line program's file work on the Delaunay input in memory:
 //! writing its `.node` text, reading it back, and writing the `.ele` of its triangulation. Mode
@@ -28,6 +29,7 @@ fn main() {
     }
     let mut points = Vec::with_capacity(2 * n);
     let mut segments = Vec::new();
+    let mut holes = Vec::new();
     let default_switches = match mode {
         "cdt" => {
             // The star polygon of benches/cdt.rs (same seed, same generator).
@@ -45,6 +47,35 @@ fn main() {
                 .collect();
             "pQ"
         }
+        "hole" => {
+            // The square with a hole of benches/refine.rs (tests/common/pslg.rs,
+            // `square_with_hole`: a circle of `n` segments, four free-standing segments).
+            let mut add_chain = |polygon: &[[f64; 2]], closed: bool| {
+                let first = (points.len() / 2) as i32 + 1;
+                let k = polygon.len() as i32;
+                points.extend(polygon.iter().flatten());
+                let ends = if closed { k } else { k - 1 };
+                segments.extend((0..ends).flat_map(|i| [first + i, first + (i + 1) % k]));
+            };
+            add_chain(&[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]], true);
+            let circle: Vec<[f64; 2]> = (0..n)
+                .map(|k| {
+                    let angle = std::f64::consts::TAU * k as f64 / n as f64;
+                    [0.5 + 0.2 * angle.cos(), 0.5 + 0.2 * angle.sin()]
+                })
+                .collect();
+            add_chain(&circle, true);
+            for [a, b] in [
+                [[0.10, 0.12], [0.20, 0.17]],
+                [[0.82, 0.10], [0.90, 0.21]],
+                [[0.85, 0.80], [0.93, 0.87]],
+                [[0.08, 0.83], [0.17, 0.90]],
+            ] {
+                add_chain(&[a, b], false);
+            }
+            holes.extend([0.5, 0.5]);
+            "pq30a0.0000014Q"
+        }
         _ => {
             let mut rng = SplitMix64::new(0x5EED_0001);
             for _ in 0..n {
@@ -58,6 +89,7 @@ fn main() {
     let input = Input {
         points: &points,
         segments: &segments,
+        holes: &holes,
         ..Input::default()
     };
     for _ in 0..reps {

@@ -186,6 +186,47 @@ pub(super) fn split_parameter(
     (t, VertexKind::OnSegment { corner, shell: k })
 }
 
+/// How much a split point rounded off a boundary subsegment may cut off the domain or add to it:
+/// the sliver between the point and the subsegment, as a fraction of the domain triangle beside
+/// the subsegment. Rounding moves a point by about 10^-16 of its coordinates: the sliver is that
+/// distance over the triangle's height, which only a triangle less than some 10^-10 of its
+/// coordinates high (10^6 roundings) makes larger than 2^-20. In a domain thinner than the rounding
+/// of its coordinates every such split is refused unless the point falls exactly on the line.
+const BOUNDARY_SLIVER: f64 = 1.0 / (1u64 << 20) as f64;
+
+/// Whether `p`, the rounded split point of the subsegment of half-edge `e`, splits it faithfully:
+/// - every triangle beside the subsegment splits into two counter-clockwise triangles (exact
+///   orientation: `p` lies strictly inside the union of the two triangles beside it, so it is on
+///   no existing vertex and no other edge);
+/// - on a boundary subsegment (the domain on one side only), the sliver between `p` and the
+///   subsegment is at most [`BOUNDARY_SLIVER`] of the domain triangle beside it, on whichever
+///   side `p` was rounded to. Rounded outward, `p` would widen the domain; rounded inward, it
+///   would narrow it; in a domain thinner than the rounding of its coordinates either changes
+///   its area by a large fraction (exactly on the line, `p` changes nothing).
+///
+/// The domain's area thus changes by at most that fraction of the triangles split at its
+/// boundary.
+pub(super) fn splits_faithfully<P: Predicates>(mesh: &Mesh, e: u32, p: Point) -> bool {
+    let sides = [e, mesh.twin(e)];
+    let in_domain = sides.map(|h| mesh.apex(h) != GHOST && inside(mesh, triangle_of(h)));
+    let splits_cleanly = sides.iter().all(|&h| {
+        let w = mesh.apex(h);
+        let (a, b) = (mesh.point(mesh.origin(h)), mesh.point(mesh.dest(h)));
+        w == GHOST
+            || (P::orient2d(a, p, mesh.point(w)) > 0.0 && P::orient2d(p, b, mesh.point(w)) > 0.0)
+    });
+    if !splits_cleanly {
+        return false;
+    }
+    if in_domain[0] == in_domain[1] {
+        return true; // inside the domain or outside it: its area stays the same
+    }
+    let h = if in_domain[0] { sides[0] } else { sides[1] };
+    let (a, b) = (mesh.point(mesh.origin(h)), mesh.point(mesh.dest(h)));
+    let sliver = P::orient2d(a, b, p).abs();
+    sliver == 0.0 || sliver <= BOUNDARY_SLIVER * P::orient2d(a, b, mesh.point(mesh.apex(h)))
+}
+
 /// For an input vertex `x` where two segments meet at less than 90°: the cosine of the smallest
 /// such angle (larger is sharper). `None` for vertices inserted by refinement and for vertices
 /// whose segments meet at right or obtuse angles only. The smallest angle is between two

@@ -3,12 +3,14 @@
 
 use std::collections::VecDeque;
 
-/// A queued bad triangle: its corners (it may be gone by the time it is taken out).
+/// A queued bad triangle: its corners, and the slot it had when queued (it may be gone by the
+/// time it is taken out, and the slot reused).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) struct BadTriangle {
     /// Queue bucket: higher goes first.
     pub(super) bucket: usize,
     pub(super) corners: [u32; 3],
+    pub(super) slot: u32,
 }
 
 /// Bad triangles in buckets (a bucket queue: constant time per operation, where a binary heap
@@ -22,7 +24,7 @@ pub(super) struct BadTriangle {
 /// again as long on a million triangles (more flips, longer walks and cavities).
 #[derive(Default)]
 pub(super) struct BadQueue {
-    buckets: Vec<VecDeque<[u32; 3]>>,
+    buckets: Vec<VecDeque<([u32; 3], u32)>>,
     /// No bucket above this one holds anything.
     top: usize,
 }
@@ -49,15 +51,16 @@ impl BadQueue {
     /// The bucket of the triangles bad only by their size.
     pub(super) const SIZE_BUCKET: usize = 0;
     pub(super) fn push(&mut self, bad: BadTriangle) {
-        self.buckets[bad.bucket].push_back(bad.corners);
+        self.buckets[bad.bucket].push_back((bad.corners, bad.slot));
         self.top = self.top.max(bad.bucket);
     }
     pub(super) fn pop(&mut self) -> Option<BadTriangle> {
         loop {
-            if let Some(corners) = self.buckets[self.top].pop_front() {
+            if let Some((corners, slot)) = self.buckets[self.top].pop_front() {
                 return Some(BadTriangle {
                     bucket: self.top,
                     corners,
+                    slot,
                 });
             }
             if self.top == 0 {

@@ -8,7 +8,7 @@ use std::collections::{HashSet, VecDeque};
 
 use super::attributes::Attributes;
 use super::driver::Polling;
-use super::encroachment::{split_parameter, Cavity, Encroachment};
+use super::encroachment::{split_parameter, splits_faithfully, Cavity, Encroachment};
 use super::queue::{BadQueue, BadTriangle};
 use super::split_point::{min_angle_sin2, AngleBound};
 use super::walk::{walk, Walk};
@@ -191,16 +191,24 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
         }
         while !self.should_stop() {
             let Some(bad) = self.bad.pop() else { break };
-            let [a, b, c] = bad.corners;
-            let Some(e) = self.mesh().find_edge(a, b) else {
-                continue;
-            };
-            if self.mesh().apex(e) != c {
+            let Some(t) = self.still_there(bad) else {
                 continue; // gone since it was queued
-            }
-            self.split_triangle(triangle_of(e), bad);
+            };
+            self.split_triangle(t, bad);
             self.split_encroached();
         }
+    }
+
+    /// The triangle a queued bad triangle is now, if it is still there: mostly in the slot it
+    /// was queued from (one look, where finding the edge takes a turn around a vertex).
+    fn still_there(&self, bad: BadTriangle) -> Option<u32> {
+        let mesh = self.mesh();
+        if bad.slot < mesh.triangle_count() && mesh.triangle(bad.slot) == bad.corners {
+            return Some(bad.slot);
+        }
+        let [a, b, c] = bad.corners;
+        let e = mesh.find_edge(a, b)?;
+        (mesh.apex(e) == c).then_some(triangle_of(e))
     }
 
     /// Whether to stop: the caller cancelled (polled now and then), or the limit is reached.
@@ -261,10 +269,9 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
     }
 
     /// Splits the subsegment of half-edge `e`; returns whether it did. It does not when the
-    /// pieces would be shorter than the floor, or when the rounded split point would fall on or
-    /// beyond the line from an end to a vertex beside the subsegment (a vertex within rounding
-    /// distance of it): the triangles made would be inverted. Such a subsegment is never tried
-    /// again.
+    /// pieces would be shorter than the floor, or when the rounded split point would make
+    /// inverted triangles or move the domain's boundary by more than rounding
+    /// ([`splits_faithfully`]). Such a subsegment is never tried again.
     fn split_segment(&mut self, e: u32) -> bool {
         let mesh = self.mesh();
         let (u, v) = (mesh.origin(e), mesh.dest(e));
@@ -273,14 +280,7 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
         let p = [pu[0] + t * (pv[0] - pu[0]), pu[1] + t * (pv[1] - pu[1])];
         let floor2 = self.settings.floor2;
         let too_short = |q: Point, r: Point| (q[0] - r[0]).powi(2) + (q[1] - r[1]).powi(2) < floor2;
-        let splits_cleanly = [e, mesh.twin(e)].iter().all(|&h| {
-            let w = mesh.apex(h);
-            let (a, b) = (mesh.point(mesh.origin(h)), mesh.point(mesh.dest(h)));
-            w == GHOST
-                || (P::orient2d(a, p, mesh.point(w)) > 0.0
-                    && P::orient2d(p, b, mesh.point(w)) > 0.0)
-        });
-        if too_short(p, pu) || too_short(p, pv) || !splits_cleanly {
+        if too_short(p, pu) || too_short(p, pv) || !splits_faithfully::<P>(mesh, e, p) {
             self.unsplittable.insert((u.min(v), u.max(v)));
             self.tally.skipped += 1;
             return false;
@@ -328,7 +328,11 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
                 Some(shortest) => BadQueue::skinny_bucket(shortest / self.settings.extent2),
                 None => BadQueue::SIZE_BUCKET,
             };
-            self.bad.push(BadTriangle { bucket, corners });
+            self.bad.push(BadTriangle {
+                bucket,
+                corners,
+                slot: t,
+            });
         }
     }
 
