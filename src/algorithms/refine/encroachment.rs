@@ -206,7 +206,7 @@ const BOUNDARY_SLIVER: f64 = 1.0 / (1u64 << 20) as f64;
 ///
 /// The domain's area thus changes by at most that fraction of the triangles split at its
 /// boundary.
-pub(super) fn splits_faithfully<P: Predicates>(mesh: &Mesh, e: u32, p: Point) -> bool {
+pub(super) fn splits_faithfully<P: Predicates>(mesh: RawMesh<'_>, e: u32, p: Point) -> bool {
     let sides = [e, mesh.twin(e)];
     let in_domain = sides.map(|h| mesh.apex(h) != GHOST && inside(mesh, triangle_of(h)));
     let splits_cleanly = sides.iter().all(|&h| {
