@@ -64,7 +64,7 @@ pub fn push_g17(out: &mut Vec<u8>, value: f64) {
     }
 }
 
-/// 10^k for k = 0 to 22: every power of ten that [`seventeen_digits`] scales by.
+/// 10^k for k = 0 to 22: every power of ten that [`seventeen_digits`] scales by and [`decimal_length`] compares with.
 const POWERS_OF_TEN: [u128; 23] = {
     let mut table = [1u128; 23];
     let mut k = 1;
@@ -291,19 +291,10 @@ pub fn g17(value: f64) -> String {
 /// The number of decimal digits of `value` (1 for 0): from its bit length, which gives the
 /// digit count or one more, and one comparison.
 fn decimal_length(value: u64) -> usize {
-    const POWERS: [u64; 20] = {
-        let mut table = [1u64; 20];
-        let mut k = 1;
-        while k < 20 {
-            table[k] = table[k - 1] * 10;
-            k += 1;
-        }
-        table
-    };
     let bits = 64 - (value | 1).leading_zeros();
     // ⌊bits · log10 2⌋ (1233 / 4096 ≈ log10 2): the number of digits of 2^(bits−1), minus one.
     let guess = ((bits * 1233) >> 12) as usize;
-    guess + usize::from((value | 1) >= POWERS[guess])
+    guess + usize::from(u128::from(value | 1) >= POWERS_OF_TEN[guess])
 }
 
 /// Appends the decimal digits of `value`: below 10^8 (vertex and triangle numbers) as
