@@ -96,6 +96,18 @@ pub struct Constrainer<P: Predicates> {
     crossed_pairs: HashSet<(u32, u32)>,
 }
 
+/// The size of [`Scratch::cavity_filter`], in 64-bit words.
+const CAVITY_FILTER_WORDS: usize = 16;
+
+/// The bit of triangle `t` in [`Scratch::cavity_filter`]: (word, mask), from a multiplicative
+/// hash (neighbouring slots spread over the words).
+#[inline(always)]
+fn cavity_filter_bit(t: TriangleId) -> (usize, u64) {
+    let bits = (CAVITY_FILTER_WORDS * 64).trailing_zeros();
+    let hash = t.raw().wrapping_mul(0x9E37_79B1) >> (32 - bits);
+    ((hash >> 6) as usize, 1 << (hash & 63))
+}
+
 /// Buffers of segment insertion, kept between segments so that inserting one allocates nothing.
 #[derive(Clone, Default)]
 struct Scratch {
@@ -118,8 +130,14 @@ struct Scratch {
     triangles: Vec<([VertexId; 3], EdgeId)>,
     /// Pairs (new half-edge, untouched half-edge outside the cavity) to join as twins.
     outer_links: Vec<(EdgeId, EdgeId)>,
-    /// The cavity's slots, sorted (to tell whether a half-edge lies in the cavity).
-    sorted_slots: Vec<TriangleId>,
+    /// Per triangle slot, the serial number of the last cavity that held it (to tell in O(1)
+    /// whether a half-edge lies in the current cavity); grown with the mesh.
+    cavity_of: Vec<u32>,
+    /// A bit per hash of the current cavity's slots: a clear bit rules a triangle out without
+    /// reading `cavity_of` (a cache miss per boundary edge otherwise).
+    cavity_filter: [u64; CAVITY_FILTER_WORDS],
+    /// The serial number of the current cavity (never 0, the mark of no cavity).
+    cavity_serial: u32,
     /// Triples (new half-edge, old half-edge inside the cavity, its segment id) for boundary
     /// edges with the cavity on both sides; see [`Constrainer::retriangulate_cavity`].
     inner_links: Vec<(EdgeId, EdgeId, u32)>,
