@@ -1,6 +1,9 @@
 //! The driver: checks the input, runs the algorithms that the options ask for and assembles the
 //! [`Output`] and [`VoronoiOutput`].
 
+use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
+
 use crate::algorithms::constrain::Constrainer;
 use crate::algorithms::delaunay::{self, merge, order, Inserter, Triangulation};
 use crate::algorithms::domain::{carve, Domain};
@@ -15,58 +18,12 @@ use crate::mesh::{Mesh, TriangleId, VertexId, GHOST, NONE, OUTSIDE};
 use crate::options::{Algorithm, Options};
 use crate::scaling::Scaling;
 
+mod checks; // the switches and input before any work, the finished mesh after (`C`)
+
+use checks::{check_indices_and_seeds, check_mesh, check_supported, checked_points};
+
 /// Seed of the randomized insertion order (`i`): fixed, so results are reproducible.
 const BRIO_SEED: u64 = 0x7269_616E_676C_6521;
-
-/// Rejects the switches whose features have not landed yet, with a clear message.
-fn check_supported(options: &Options) -> Result<(), Error> {
-    let unsupported = [(
-        options.weighted != 0,
-        "The `w`/`W` switches (weighted triangulation)",
-    )];
-    match unsupported.iter().find(|(on, _)| *on) {
-        Some((_, what)) => Err(Error::Unsupported(what)),
-        None => Ok(()),
-    }
-}
-
-/// Checks the parts of the input that every run reads and collects the points.
-fn checked_points(input: &Input<'_>) -> Result<Vec<Point>, Error> {
-    let n = input.point_count();
-    if n < 3 {
-        return Err(Error::TooFewPoints);
-    }
-    if input.point_attributes.len() != n * input.point_attribute_count {
-        return Err(Error::BadCount {
-            field: "numberofpointattributes",
-            value: input.point_attribute_count as i64,
-        });
-    }
-    // Copied and checked in one pass; the culprit is looked for only if there is one.
-    let mut all_finite = true;
-    let points: Vec<Point> = input
-        .points
-        .chunks_exact(2)
-        .map(|c| {
-            all_finite &= c[0].is_finite() & c[1].is_finite();
-            [c[0], c[1]]
-        })
-        .collect();
-    if let Some(i) = (!all_finite)
-        .then(|| {
-            points
-                .iter()
-                .position(|p| !(p[0].is_finite() && p[1].is_finite()))
-        })
-        .flatten()
-    {
-        return Err(Error::NonFinite {
-            what: "Vertex",
-            index: i,
-        });
-    }
-    Ok(points)
-}
 
 fn delaunay_with<P: Predicates>(options: &Options, mut points: Vec<Point>) -> Triangulation {
     match options.algorithm {
@@ -88,70 +45,6 @@ fn delaunay_with<P: Predicates>(options: &Options, mut points: Vec<Point>) -> Tr
     }
 }
 
-/// Checks the vertex indices of segments (`p`) and triangles (`r`), and the hole and region
-/// points that will be located: an index out of range is an error, never a silent skip.
-fn check_indices_and_seeds(options: &Options, input: &Input<'_>) -> Result<(), Error> {
-    let base = i64::from(options.first_index());
-    let n = input.point_count() as i64;
-    let check = |item, role, list: &[i32], width: usize| {
-        for (i, row) in list.chunks_exact(width).enumerate() {
-            if let Some(&v) = row
-                .iter()
-                .find(|&&v| !(base..base + n).contains(&i64::from(v)))
-            {
-                return Err(Error::IndexOutOfRange {
-                    item,
-                    number: i as i64 + base,
-                    role,
-                    value: i64::from(v),
-                    first: base,
-                    last: base + n - 1,
-                });
-            }
-        }
-        Ok(())
-    };
-    if options.pslg {
-        check("Segment", "endpoint", input.segments, 2)?;
-    }
-    if options.refine {
-        if input.corners != 3 && input.corners != 6 {
-            return Err(Error::BadCorners(input.corners as i64));
-        }
-        check("Triangle", "corner", input.triangles, input.corners)?;
-    }
-    if options.pslg && !options.refine {
-        let number = |i: usize| (i as i64 + base) as usize;
-        if !options.ignore_holes {
-            if let Some(i) = input
-                .holes
-                .chunks_exact(2)
-                .position(|h| !(h[0].is_finite() && h[1].is_finite()))
-            {
-                return Err(Error::NonFinite {
-                    what: "Hole",
-                    index: number(i),
-                });
-            }
-        }
-        for (i, r) in input.regions.chunks_exact(4).enumerate() {
-            if !(r[0].is_finite() && r[1].is_finite()) {
-                return Err(Error::NonFinite {
-                    what: "Region",
-                    index: number(i),
-                });
-            }
-            if r[3].is_nan() {
-                return Err(Error::NanRegionArea {
-                    region: i as i64 + base,
-                });
-            }
-        }
-    }
-    Ok(())
-}
-
-/// The inputs that the engine sees in scaled units (see [`crate::scaling`]).
 struct ScaledInput {
     options: Options,
     points: Vec<Point>,
@@ -451,7 +344,9 @@ fn insert_segments<P: Predicates>(
 ) -> Result<(), Error> {
     let m = (input.segments.len() / 2) as u64;
     hooks.report(Phase::Segments, 0, m);
-    let mut inserted: std::collections::HashMap<(u32, u32), u32> = std::collections::HashMap::new();
+    let mut inserted: HashMap<u64, u32, BuildHasherDefault<PairHasher>> =
+        HashMap::with_capacity_and_hasher(m as usize, Default::default());
+    let key = |a: u32, b: u32| (u64::from(a.min(b)) << 32) | u64::from(a.max(b));
     for (i, s) in input.segments.chunks_exact(2).enumerate() {
         let marker = input.segment_markers.map_or(0, |m| m[i]);
         // In range: `check_indices_and_seeds` refused the input otherwise.
@@ -474,14 +369,14 @@ fn insert_segments<P: Predicates>(
             ));
             continue;
         }
-        if let Some(&id) = inserted.get(&(a.min(b), a.max(b))) {
+        if let Some(&id) = inserted.get(&key(a, b)) {
             if cdt.markers[id as usize] == 0 {
                 cdt.markers[id as usize] = marker;
             }
             continue;
         }
         let id = cdt.new_segment_id(marker, a, b);
-        inserted.insert((a.min(b), a.max(b)), id);
+        inserted.insert(key(a, b), id);
         cdt.insert_segment(VertexId::new(a), VertexId::new(b), id)?;
         if i % 4096 == 4095 {
             hooks.report(Phase::Segments, i as u64 + 1, m);
@@ -489,6 +384,28 @@ fn insert_segments<P: Predicates>(
     }
     hooks.report(Phase::Segments, m, m);
     Ok(())
+}
+
+/// The hash of a vertex pair packed in one `u64` (Fibonacci hashing: one multiplication, the
+/// high bits well mixed): the segment table needs no protection against chosen collisions, and
+/// SipHash cost 4% of a constrained triangulation of 10^5 segments.
+#[derive(Default)]
+struct PairHasher(u64);
+
+impl Hasher for PairHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for &byte in bytes {
+            self.write_u64(u64::from(byte));
+        }
+    }
+    fn write_u64(&mut self, value: u64) {
+        self.0 = (self.0 ^ value)
+            .wrapping_mul(0x9E37_79B9_7F4A_7C15)
+            .rotate_left(32);
+    }
 }
 
 fn write_outputs(
@@ -654,35 +571,4 @@ fn unscale_outputs(
         }
     }
     Ok(())
-}
-
-/// `C`: checks the final mesh with exact arithmetic and reports what it found.
-fn check_mesh<P: Predicates>(meshed: &Meshed) -> String {
-    let mesh = &meshed.mesh;
-    if let Err(why) = mesh.check_topology() {
-        return format!("Mesh check: the topology is inconsistent: {why}.");
-    }
-    let mut inverted = 0;
-    let mut not_delaunay = 0;
-    for t in mesh.triangles() {
-        if mesh.is_ghost(t) {
-            continue;
-        }
-        let [a, b, c] = mesh.triangle(t).map(|v| mesh.point(v));
-        if P::orient2d(a, b, c) <= 0.0 {
-            inverted += 1;
-        }
-        for e in t.edges() {
-            let q = mesh.apex(mesh.twin(e));
-            if q != GHOST && !mesh.is_segment(e) && P::incircle(a, b, c, mesh.point(q)) > 0.0 {
-                not_delaunay += 1;
-            }
-        }
-    }
-    match (inverted, not_delaunay) {
-        (0, 0) => "Mesh check: the mesh appears to be consistent, and constrained Delaunay.".into(),
-        _ => format!(
-            "Mesh check: {inverted} triangles are inverted or flat and {not_delaunay} edges are not locally Delaunay."
-        ),
-    }
 }

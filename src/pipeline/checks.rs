@@ -1,0 +1,154 @@
+//! The checks of a run: of its switches and input before any work (every error a typed
+//! [`Error`], never a silent skip), and of the finished mesh (`C`).
+
+use super::Meshed;
+use crate::data::Input;
+use crate::error::Error;
+use crate::geometry::{Point, Predicates};
+use crate::mesh::GHOST;
+use crate::options::Options;
+
+/// Rejects the switches whose features have not landed yet, with a clear message.
+pub(super) fn check_supported(options: &Options) -> Result<(), Error> {
+    let unsupported = [(
+        options.weighted != 0,
+        "The `w`/`W` switches (weighted triangulation)",
+    )];
+    match unsupported.iter().find(|(on, _)| *on) {
+        Some((_, what)) => Err(Error::Unsupported(what)),
+        None => Ok(()),
+    }
+}
+
+/// Checks the parts of the input that every run reads and collects the points.
+pub(super) fn checked_points(input: &Input<'_>) -> Result<Vec<Point>, Error> {
+    let n = input.point_count();
+    if n < 3 {
+        return Err(Error::TooFewPoints);
+    }
+    if input.point_attributes.len() != n * input.point_attribute_count {
+        return Err(Error::BadCount {
+            field: "numberofpointattributes",
+            value: input.point_attribute_count as i64,
+        });
+    }
+    // Copied and checked in one pass; the culprit is looked for only if there is one.
+    let mut all_finite = true;
+    let points: Vec<Point> = input
+        .points
+        .chunks_exact(2)
+        .map(|c| {
+            all_finite &= c[0].is_finite() & c[1].is_finite();
+            [c[0], c[1]]
+        })
+        .collect();
+    if let Some(i) = (!all_finite)
+        .then(|| {
+            points
+                .iter()
+                .position(|p| !(p[0].is_finite() && p[1].is_finite()))
+        })
+        .flatten()
+    {
+        return Err(Error::NonFinite {
+            what: "Vertex",
+            index: i,
+        });
+    }
+    Ok(points)
+}
+
+/// Checks the vertex indices of segments (`p`) and triangles (`r`), and the hole and region
+/// points that will be located: an index out of range is an error, never a silent skip.
+pub(super) fn check_indices_and_seeds(options: &Options, input: &Input<'_>) -> Result<(), Error> {
+    let base = i64::from(options.first_index());
+    let n = input.point_count() as i64;
+    let check = |item, role, list: &[i32], width: usize| {
+        for (i, row) in list.chunks_exact(width).enumerate() {
+            if let Some(&v) = row
+                .iter()
+                .find(|&&v| !(base..base + n).contains(&i64::from(v)))
+            {
+                return Err(Error::IndexOutOfRange {
+                    item,
+                    number: i as i64 + base,
+                    role,
+                    value: i64::from(v),
+                    first: base,
+                    last: base + n - 1,
+                });
+            }
+        }
+        Ok(())
+    };
+    if options.pslg {
+        check("Segment", "endpoint", input.segments, 2)?;
+    }
+    if options.refine {
+        if input.corners != 3 && input.corners != 6 {
+            return Err(Error::BadCorners(input.corners as i64));
+        }
+        check("Triangle", "corner", input.triangles, input.corners)?;
+    }
+    if options.pslg && !options.refine {
+        let number = |i: usize| (i as i64 + base) as usize;
+        if !options.ignore_holes {
+            if let Some(i) = input
+                .holes
+                .chunks_exact(2)
+                .position(|h| !(h[0].is_finite() && h[1].is_finite()))
+            {
+                return Err(Error::NonFinite {
+                    what: "Hole",
+                    index: number(i),
+                });
+            }
+        }
+        for (i, r) in input.regions.chunks_exact(4).enumerate() {
+            if !(r[0].is_finite() && r[1].is_finite()) {
+                return Err(Error::NonFinite {
+                    what: "Region",
+                    index: number(i),
+                });
+            }
+            if r[3].is_nan() {
+                return Err(Error::NanRegionArea {
+                    region: i as i64 + base,
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The inputs that the engine sees in scaled units (see [`crate::scaling`]).
+/// `C`: checks the final mesh with exact arithmetic and reports what it found.
+pub(super) fn check_mesh<P: Predicates>(meshed: &Meshed) -> String {
+    let mesh = &meshed.mesh;
+    if let Err(why) = mesh.check_topology() {
+        return format!("Mesh check: the topology is inconsistent: {why}.");
+    }
+    let mut inverted = 0;
+    let mut not_delaunay = 0;
+    for t in mesh.triangles() {
+        if mesh.is_ghost(t) {
+            continue;
+        }
+        let [a, b, c] = mesh.triangle(t).map(|v| mesh.point(v));
+        if P::orient2d(a, b, c) <= 0.0 {
+            inverted += 1;
+        }
+        for e in t.edges() {
+            let q = mesh.apex(mesh.twin(e));
+            if q != GHOST && !mesh.is_segment(e) && P::incircle(a, b, c, mesh.point(q)) > 0.0 {
+                not_delaunay += 1;
+            }
+        }
+    }
+    match (inverted, not_delaunay) {
+        (0, 0) => "Mesh check: the mesh appears to be consistent, and constrained Delaunay.".into(),
+        _ => format!(
+            "Mesh check: {inverted} triangles are inverted or flat and {not_delaunay} edges are not locally Delaunay."
+        ),
+    }
+}
