@@ -122,6 +122,68 @@ impl Mesh {
         }
     }
 
+    /// Lawson's flips around the vertex `p` just inserted, in one turn around it instead of from
+    /// a stack: every triangle around `p` has `p` in slot 2 (the splits and the flips leave it
+    /// there), so the edges to check are the slot-0 edges of the ring, and a flip replaces the
+    /// one being checked by two, the first of them in the same triangle. Each ring edge is
+    /// checked once, after it appears; edges to `p` are never flipped (Lawson 1977; the order
+    /// of Guibas, Knuth and Sharir 1992), so the turn ends at the vertex it started from.
+    /// Returns a triangle around `p` (where the next walk starts).
+    ///
+    /// The bulk build's loop: no tracking, no segments, no bounds checks.
+    ///
+    /// # Safety
+    /// `start` is a triangle of the mesh with the new vertex in slot 2, and so is every triangle
+    /// around that vertex; the mesh tracks nothing; the twins are complete and mutual; every
+    /// corner is [`GHOST`] or a vertex with a point.
+    #[inline(always)]
+    pub unsafe fn legalize_around_unchecked<P: Predicates>(
+        &mut self,
+        start: TriangleId,
+        ghosts: Ghosts,
+    ) -> TriangleId {
+        const NEXT_SLOT: [u32; 3] = [1, 2, 0];
+        const PREV_SLOT: [u32; 3] = [2, 0, 1];
+        debug_assert!(self.segment.is_empty() && self.vertex_edge.is_empty());
+        // SAFETY (all reads and writes below): half-edges of triangles of the ring and of their
+        // neighbours, by the contract; corners read as points are checked finite first
+        // (`is_illegal`).
+        unsafe {
+            let c = self.corner_unchecked(start.edge(2));
+            let first = self.corner_unchecked(start.edge(0));
+            let mut t = start;
+            loop {
+                let e = t.edge(0);
+                let (a, b) = (self.corner_unchecked(e), self.corner_unchecked(t.edge(1)));
+                let f = self.twin_unchecked(e);
+                let (u, slot) = (f.triangle(), f.slot() as usize);
+                let (f_next, f_prev) = (u.edge(NEXT_SLOT[slot]), u.edge(PREV_SLOT[slot]));
+                let d = self.corner_unchecked(f_prev);
+                let quad = Quad { e, f, a, b, c, d };
+                if self.is_illegal::<P, false>(&quad, ghosts) {
+                    // (a, b, c) and (b, a, d) become (a, d, c) in `t` and (d, b, c) in `u`; the
+                    // half-edge c → a keeps its slot and its twin.
+                    let tw_ad = self.twin_unchecked(f_next);
+                    let tw_db = self.twin_unchecked(f_prev);
+                    let tw_bc = self.twin_unchecked(t.edge(1));
+                    self.set_corner_unchecked(t.edge(1), d);
+                    self.set_corners_unchecked(u, [d, b, c]);
+                    self.link_unchecked(t.edge(0), tw_ad);
+                    self.link_unchecked(t.edge(1), u.edge(2));
+                    self.link_unchecked(u.edge(0), tw_db);
+                    self.link_unchecked(u.edge(1), tw_bc);
+                    continue;
+                }
+                if b == first {
+                    return t;
+                }
+                // The next triangle counter-clockwise around `c`: across b → c, whose twin
+                // c → b is its slot 2.
+                t = self.twin_unchecked(t.edge(1)).triangle();
+            }
+        }
+    }
+
     /// # Safety
     /// Without `CHECKED`: `e` and its twin are half-edges of the mesh.
     #[inline(always)]

@@ -4,12 +4,14 @@
 //! work that a plain point set never needs taken out of the loop that runs once per point: no
 //! segments, tags or vertex links to keep, ghosts tested only on the rare edges that touch them,
 //! and no bounds checks on the mesh arrays (the mesh's unchecked accessors, whose safety rests on
-//! its invariants). The flips are the one Lawson loop, [`Mesh::legalize_unchecked`], compiled for
-//! the untracked policy [`AroundVertex`]`<false>`.
+//! its invariants). The flips check the edges around the new vertex in one counter-clockwise
+//! turn ([`Mesh::legalize_around_unchecked`]) rather than from a stack; the walk carries the
+//! points of the edge it crossed into the next triangle.
 //!
-//! The result is the same mesh as [`super::Inserter`] builds (same triangles, same slots).
+//! In general position the result is the mesh [`super::Inserter`] builds (the Delaunay
+//! triangulation is unique); with cocircular points it may choose other diagonals.
 
-use super::{location_in_triangle, AroundVertex, Location};
+use super::{location_in_triangle, Location};
 use crate::geometry::{Point, Predicates};
 use crate::mesh::{EdgeId, Ghosts, Mesh, TriangleId, VertexId, GHOST, NONE};
 
@@ -51,7 +53,6 @@ pub(super) fn triangulate_in_order<P: Predicates>(
         mesh,
         last: TriangleId::new(0),
         rng: 0x9E37_79B9,
-        stack: Vec::with_capacity(64),
         _predicates: Default::default(),
     };
     for u in (1..n).map(v) {
@@ -68,15 +69,12 @@ pub(super) fn triangulate_in_order<P: Predicates>(
 /// The slot after and before each slot of a triangle.
 const NEXT_SLOT: [u32; 3] = [1, 2, 0];
 const PREV_SLOT: [u32; 3] = [2, 0, 1];
-/// The three slots starting from each one.
-const ROTATED: [[u32; 3]; 3] = [[0, 1, 2], [1, 2, 0], [2, 0, 1]];
 
 struct Builder<P: Predicates> {
     mesh: Mesh,
     /// A triangle incident to the last inserted vertex: where the next walk starts.
     last: TriangleId,
     rng: u32,
-    stack: Vec<EdgeId>,
     _predicates: std::marker::PhantomData<P>,
 }
 
@@ -100,46 +98,27 @@ impl<P: Predicates> Builder<P> {
         unsafe { self.mesh.point_unchecked(v) }
     }
 
-    #[inline(always)]
-    fn link(&mut self, a: EdgeId, b: EdgeId) {
-        // SAFETY: as in `corner`: both are half-edges of the mesh.
-        unsafe { self.mesh.link_unchecked(a, b) }
-    }
-
     /// Inserts vertex `v`, walking from the last insertion. `Err(u)` if `v` lies on vertex `u`.
     #[inline(always)]
     fn insert(&mut self, v: VertexId) -> Result<(), VertexId> {
         let p = self.point(v);
-        let location = self.locate(p);
-        let grows_hull = matches!(location, Location::Outside(_));
-        match location {
+        // A triangle with `v` in slot 2, and how the flips treat the hull.
+        let (start, ghosts) = match self.locate(p) {
             Location::OnVertex(u) => return Err(u),
-            Location::InTriangle(t) | Location::Outside(t) => self.split_triangle(t, v),
-            Location::OnEdge(e) => {
-                let ts = self.mesh.split_edge(e, v);
-                self.stack.extend(ts.iter().map(|&t| t.edge(0)));
-            }
-        }
-        let mut star = AroundVertex::<false> {
-            ghosts: if grows_hull {
-                Ghosts::GrowHull
-            } else {
-                Ghosts::HullEdges
-            },
-            last: &mut self.last,
+            Location::InTriangle(t) => (self.split_triangle(t, v), Ghosts::HullEdges),
+            Location::Outside(t) => (self.split_triangle(t, v), Ghosts::GrowHull),
+            Location::OnEdge(e) => (self.mesh.split_edge(e, v)[0], Ghosts::HullEdges),
         };
-        // SAFETY: the stack holds slot 0 of triangles of the mesh, and the flips stack slot 0 of
-        // the two they rewrite; the twins are complete (every triangle is linked before the
-        // flips); corners are vertex ids or GHOST.
-        unsafe {
-            self.mesh
-                .legalize_unchecked::<P, _>(&mut self.stack, &mut star)
-        };
+        // SAFETY: the splits leave `v` in slot 2 of every triangle around it, linked (twins
+        // complete and mutual); the mesh tracks nothing; corners are vertex ids or GHOST.
+        self.last = unsafe { self.mesh.legalize_around_unchecked::<P>(start, ghosts) };
         Ok(())
     }
 
-    /// The visibility walk of [`super::Inserter::locate`] (stochastic: the first edge tested
-    /// varies, so the walk cannot cycle), from the last insertion.
+    /// The visibility walk of [`super::Inserter::locate`] from the last insertion: all three
+    /// edges of the first triangle are tested, then, in each triangle entered, the two edges
+    /// other than the one crossed, in random order (a stochastic walk cannot cycle, Devillers,
+    /// Pion and Teillaud 2002), with the two points of the crossed edge carried over.
     #[inline(always)]
     fn locate(&mut self, p: Point) -> Location {
         let mut t = self.last;
@@ -152,54 +131,90 @@ impl<P: Predicates> Builder<P> {
                 }
             }
         }
-        let mut entry = EdgeId::NONE;
+        let ends = |b: &Self, e: EdgeId| (b.corner(e), b.corner(e.next()));
+        let points = t.edges().map(|e| self.point(self.corner(e)));
+        let mut zeros = [EdgeId::NONE; 2];
+        let mut zero_count = 0;
+        let mut crossed = None;
+        for k in 0..3 {
+            let (qa, qb) = (points[k], points[NEXT_SLOT[k] as usize]);
+            let o = P::orient2d(qa, qb, p);
+            if o < 0.0 {
+                crossed = Some((t.edge(k as u32), qa, qb));
+                break;
+            }
+            if o == 0.0 && zero_count < 2 {
+                zeros[zero_count] = t.edge(k as u32);
+                zero_count += 1;
+            }
+        }
+        let Some((e, qa, qb)) = crossed else {
+            return location_in_triangle(
+                t,
+                &zeros[..zero_count],
+                p,
+                |e| ends(self, e),
+                |v| self.point(v),
+            );
+        };
+        // `f`: the half-edge entered through, from `q0` to `q1` (`p` strictly left of it).
+        let (mut f, mut q0, mut q1) = (self.twin(e), qb, qa);
         let mut steps: u32 = 0;
         let step_limit = 4 * self.mesh.triangle_count() + 64;
-        'walk: loop {
+        loop {
             steps += 1;
             if steps > step_limit {
                 // Only reachable with inexact predicates on hard input.
                 return self.locate_fallback(p);
             }
+            let (u, slot) = (f.triangle(), f.slot() as usize);
+            let (e1, e2) = (u.edge(NEXT_SLOT[slot]), u.edge(PREV_SLOT[slot]));
+            let x = self.corner(e2);
+            if x == GHOST {
+                return Location::Outside(u);
+            }
+            let q2 = self.point(x);
             self.rng ^= self.rng << 13;
             self.rng ^= self.rng >> 17;
             self.rng ^= self.rng << 5;
-            let offset = (self.rng % 3) as usize;
-            // The three corners and their points, read once; edge `k` runs from corner `k` to
-            // corner `k + 1`.
-            let corners = t.edges().map(|e| self.corner(e));
-            let mut zeros = [EdgeId::NONE; 2];
-            let mut zero_count = 0;
-            for &slot in &ROTATED[offset] {
-                let e = t.edge(slot);
-                if e == entry {
+            // Edge e1 runs q1 → q2, e2 runs q2 → q0.
+            let (o1, o2) = if self.rng & 1 == 0 {
+                let o1 = P::orient2d(q1, q2, p);
+                if o1 < 0.0 {
+                    (f, q0) = (self.twin(e1), q2);
                     continue;
                 }
-                let (a, b) = (
-                    corners[slot as usize],
-                    corners[NEXT_SLOT[slot as usize] as usize],
-                );
-                let o = P::orient2d(self.point(a), self.point(b), p);
-                if o < 0.0 {
-                    let f = self.twin(e);
-                    let t_f = f.triangle();
-                    if self.corner(t_f.edge(PREV_SLOT[f.slot() as usize])) == GHOST {
-                        return Location::Outside(t_f);
-                    }
-                    t = t_f;
-                    entry = f;
-                    continue 'walk;
+                let o2 = P::orient2d(q2, q0, p);
+                if o2 < 0.0 {
+                    (f, q1) = (self.twin(e2), q2);
+                    continue;
                 }
-                if o == 0.0 && zero_count < 2 {
-                    zeros[zero_count] = e;
-                    zero_count += 1;
+                (o1, o2)
+            } else {
+                let o2 = P::orient2d(q2, q0, p);
+                if o2 < 0.0 {
+                    (f, q1) = (self.twin(e2), q2);
+                    continue;
                 }
-            }
+                let o1 = P::orient2d(q1, q2, p);
+                if o1 < 0.0 {
+                    (f, q0) = (self.twin(e1), q2);
+                    continue;
+                }
+                (o1, o2)
+            };
+            let zeros = match (o1 == 0.0, o2 == 0.0) {
+                (false, false) => return Location::InTriangle(u),
+                (true, false) => [e1, EdgeId::NONE],
+                (false, true) => [e2, EdgeId::NONE],
+                (true, true) => [e1, e2],
+            };
+            let count = if zeros[1] == EdgeId::NONE { 1 } else { 2 };
             return location_in_triangle(
-                t,
-                &zeros[..zero_count],
+                u,
+                &zeros[..count],
                 p,
-                |e| (self.corner(e), self.corner(e.next())),
+                |e| ends(self, e),
                 |v| self.point(v),
             );
         }
@@ -214,23 +229,28 @@ impl<P: Predicates> Builder<P> {
         location
     }
 
-    /// [`Mesh::split_triangle`] without the tracking: `(a, b, c)` becomes `(a, b, p)`,
-    /// `(b, c, p)`, `(c, a, p)`; their slot-0 edges (opposite `p`) go on the flip stack.
+    /// [`Mesh::split_triangle`] without the tracking: `(a, b, c)` becomes `(a, b, p)` in `t`,
+    /// `(b, c, p)` and `(c, a, p)` appended, each linked once. Returns `t` (`p` in slot 2).
     #[inline(always)]
-    fn split_triangle(&mut self, t: TriangleId, p: VertexId) {
+    fn split_triangle(&mut self, t: TriangleId, p: VertexId) -> TriangleId {
         let [a, b, c] = t.edges().map(|e| self.corner(e));
-        let [tw_ab, tw_bc, tw_ca] = t.edges().map(|e| self.twin(e));
-        let t1 = self.mesh.push_two_triangles([b, c, p, c, a, p]);
+        let (tw_bc, tw_ca) = (self.twin(t.edge(1)), self.twin(t.edge(2)));
+        let t1 = TriangleId::new(self.mesh.triangle_count());
         let t2 = TriangleId::new(t1.raw() + 1);
-        // SAFETY: `t` is a triangle of the mesh (a walk found it).
-        unsafe { self.mesh.set_corners_unchecked(t, [a, b, p]) };
-        self.link(t.edge(0), tw_ab);
-        self.link(t1.edge(0), tw_bc);
-        self.link(t2.edge(0), tw_ca);
-        self.link(t.edge(1), t1.edge(2));
-        self.link(t1.edge(1), t2.edge(2));
-        self.link(t2.edge(1), t.edge(2));
-        self.stack
-            .extend_from_slice(&[t.edge(0), t1.edge(0), t2.edge(0)]);
+        self.mesh.push_two_triangles(
+            [b, c, p, c, a, p],
+            [tw_bc, t2.edge(2), t.edge(1), tw_ca, t.edge(2), t1.edge(1)],
+        );
+        // SAFETY: `t` is a triangle of the mesh (a walk found it), `tw_bc` and `tw_ca` are
+        // half-edges of the mesh (its twins), `t1` and `t2` were just appended. `t` keeps its
+        // half-edge a → b and that one's twin.
+        unsafe {
+            self.mesh.set_corner_unchecked(t.edge(2), p);
+            self.mesh.set_twin_unchecked(t.edge(1), t1.edge(2));
+            self.mesh.set_twin_unchecked(t.edge(2), t2.edge(1));
+            self.mesh.set_twin_unchecked(tw_bc, t1.edge(0));
+            self.mesh.set_twin_unchecked(tw_ca, t2.edge(0));
+        }
+        t
     }
 }

@@ -27,25 +27,59 @@ struct Half {
     duplicate_of: Vec<(u32, u32)>,
 }
 
-/// Triangulates the points `ids` in a mesh with room for `capacity` triangle slots.
-fn triangulate_half<P: Predicates>(points: &[Point], ids: &[u32], capacity: usize) -> Option<Half> {
-    let local_points: Vec<Point> = ids.iter().map(|&v| points[v as usize]).collect();
+/// Triangulates the points on one side of the split (`local_points`, the input points `ids`)
+/// in a mesh with room for `capacity` triangle slots.
+fn triangulate_half<P: Predicates>(
+    local_points: Vec<Point>,
+    ids: Vec<u32>,
+    capacity: usize,
+) -> Option<Half> {
     let order = multiscale_order(&local_points);
     let sorted: Vec<Point> = order.iter().map(|&i| local_points[i as usize]).collect();
     drop(local_points);
-    let global = |i: u32| ids[order[i as usize] as usize];
+    // The input id of each vertex of the half, in insertion order.
+    let global: Vec<u32> = order.iter().map(|&i| ids[i as usize]).collect();
+    drop((order, ids));
     let (mut mesh, duplicates) = triangulate_in_order::<P>(sorted, capacity);
     if mesh.triangle_count() == 0 {
         return None;
     }
-    mesh.rename_vertices(|v| VertexId::new(global(v.raw())));
+    mesh.rename_vertices(|v| VertexId::new(global[v.index()]));
     let duplicate_of = duplicates
         .iter()
         .enumerate()
         .filter(|(_, &u)| u != NONE)
-        .map(|(i, &u)| (global(i as u32), global(u)))
+        .map(|(i, &u)| (global[i], global[u as usize]))
         .collect();
     Some(Half { mesh, duplicate_of })
+}
+
+/// The points on one side of the split point `split` (lexicographically; its copies on the
+/// left), with their input ids: one streaming pass over the points.
+fn side_of_split(points: &[Point], split: Point, left: bool) -> (Vec<Point>, Vec<u32>) {
+    let expected = points.len() / 2 + points.len() / 16 + 16;
+    let (mut side, mut ids) = (Vec::with_capacity(expected), Vec::with_capacity(expected));
+    for (i, &p) in points.iter().enumerate() {
+        let at_or_before = p[0] < split[0] || (p[0] == split[0] && p[1] <= split[1]);
+        if at_or_before == left {
+            side.push(p);
+            ids.push(i as u32);
+        }
+    }
+    (side, ids)
+}
+
+/// A point near the lexicographic median: the median of an evenly spaced sample (the halves
+/// need not be equal, only both large; the result does not depend on the split).
+fn split_point(points: &[Point]) -> Point {
+    const SAMPLE: usize = 4095;
+    let step = (points.len() / SAMPLE).max(1);
+    let mut sample: Vec<Point> = points.iter().step_by(step).copied().collect();
+    let mid = sample.len() / 2;
+    let (_, &mut median, _) = sample.select_nth_unstable_by(mid, |p, q| {
+        p[0].total_cmp(&q[0]).then(p[1].total_cmp(&q[1]))
+    });
+    median
 }
 
 /// Triangulates with two threads; gives the points back when the split does not give two proper
@@ -55,35 +89,22 @@ pub fn triangulate_two_halves<P: Predicates>(
     points: Vec<Point>,
 ) -> Result<Triangulation, Vec<Point>> {
     let n = points.len();
-    let lexicographic = |a: &u32, b: &u32| {
-        let (p, q) = (points[*a as usize], points[*b as usize]);
-        p[0].total_cmp(&q[0]).then(p[1].total_cmp(&q[1]))
-    };
-    let mut ids: Vec<u32> = (0..n as u32).collect();
-    let mid = n / 2;
-    ids.select_nth_unstable_by(mid, lexicographic);
-    // Keep copies of one position on one side: move the right side's copies of the split point
-    // to the left, so every left point precedes every right point strictly.
-    let split_point = points[ids[mid] as usize];
-    let (left_part, right_part) = ids.split_at_mut(mid);
-    let mut left: Vec<u32> = left_part.to_vec();
-    let mut right: Vec<u32> = Vec::with_capacity(right_part.len());
-    for &v in right_part.iter() {
-        if points[v as usize] == split_point {
-            left.push(v);
-        } else {
-            right.push(v);
-        }
-    }
-    drop(ids);
-    if left.len() < 3 || right.len() < 3 {
-        return Err(points);
-    }
+    // Every left point precedes every right point strictly (copies of the split point go left).
+    let split = split_point(&points);
     // The left mesh gets room for both halves' triangles (2n - 4 slots, and the two ghosts of
-    // the merge): the right half's are appended without reallocating.
+    // the merge): the right half's are appended without reallocating. Each thread picks its
+    // side out of the points itself.
     let (l, r) = std::thread::scope(|scope| {
-        let right_job = scope.spawn(|| triangulate_half::<P>(&points, &right, 0));
-        let l = triangulate_half::<P>(&points, &left, 2 * n + 4);
+        let right_job = scope.spawn(|| {
+            let (side, ids) = side_of_split(&points, split, false);
+            (ids.len() >= 3)
+                .then(|| triangulate_half::<P>(side, ids, 0))
+                .flatten()
+        });
+        let (side, ids) = side_of_split(&points, split, true);
+        let l = (ids.len() >= 3)
+            .then(|| triangulate_half::<P>(side, ids, 2 * n + 4))
+            .flatten();
         // A panic in the right half's thread (a bug) is not hidden behind a sequential retry:
         // it goes on to `pipeline::triangulate`, which reports it as `Error::Internal`.
         let r = right_job
