@@ -63,6 +63,10 @@ pub(super) struct Cavity {
     /// The triangles whose circumcircles contain the point.
     triangles: Vec<TriangleId>,
     stack: Vec<TriangleId>,
+    /// Per triangle slot: the number of the last cavity it was in (`generation` for this one),
+    /// so that membership is one look instead of a scan of `triangles`.
+    stamp: Vec<u32>,
+    generation: u32,
 }
 
 impl Cavity {
@@ -76,7 +80,14 @@ impl Cavity {
         x: Point,
         location: Location,
     ) -> Vec<(VertexId, VertexId, EdgeId)> {
-        let (stack, seen) = (&mut self.stack, &mut self.triangles);
+        self.generation = self.generation.wrapping_add(1);
+        if self.generation == 0 {
+            self.stamp.fill(0);
+            self.generation = 1;
+        }
+        self.stamp.resize(mesh.triangle_count() as usize, 0);
+        let generation = self.generation;
+        let (stack, seen, stamp) = (&mut self.stack, &mut self.triangles, &mut self.stamp);
         stack.clear();
         seen.clear();
         match location {
@@ -87,6 +98,9 @@ impl Cavity {
             Location::OnVertex(_) => {}
         }
         seen.extend_from_slice(stack);
+        for t in seen.iter() {
+            stamp[t.index()] = generation;
+        }
         let mut found = Vec::new();
         while let Some(t) = stack.pop() {
             for e in t.edges() {
@@ -102,11 +116,12 @@ impl Cavity {
                     continue;
                 }
                 let n = mesh.twin(e).triangle();
-                if seen.contains(&n) || !inside(mesh, n) || mesh.is_ghost(n) {
+                if stamp[n.index()] == generation || !inside(mesh, n) || mesh.is_ghost(n) {
                     continue;
                 }
                 let [a, b, c] = mesh.triangle(n).map(|v| mesh.point(v));
                 if P::incircle(a, b, c, x) > 0.0 {
+                    stamp[n.index()] = generation;
                     seen.push(n);
                     stack.push(n);
                 }
@@ -116,12 +131,15 @@ impl Cavity {
     }
 
     /// The quality ([`min_angle_sin2`]) of the worst triangle that inserting `x` makes: `x`
-    /// joined to the edges around the cavity that [`Self::encroached_by`] last found for it.
+    /// joined to the edges around the cavity that [`Self::encroached_by`] last found for it (in
+    /// the same mesh).
     pub(super) fn worst_triangle_made(&self, mesh: &Mesh, x: Point) -> f64 {
         let mut worst = f64::INFINITY;
         for &t in &self.triangles {
             for e in t.edges() {
-                if !mesh.is_segment(e) && self.triangles.contains(&mesh.twin(e).triangle()) {
+                if !mesh.is_segment(e)
+                    && self.stamp[mesh.twin(e).triangle().index()] == self.generation
+                {
                     continue;
                 }
                 worst = worst.min(min_angle_sin2([

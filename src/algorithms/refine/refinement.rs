@@ -53,6 +53,17 @@ pub(super) struct Tally {
     pub(super) kept_whole: u64,
 }
 
+/// A queued subsegment to split: its ends, the half-edge from `u` to `v` when it was queued
+/// (it may be gone by the time it is taken out, and the slot reused), and whether a rejected
+/// point encroached it (split regardless).
+#[derive(Clone, Copy, Debug)]
+struct Encroached {
+    u: VertexId,
+    v: VertexId,
+    edge: EdgeId,
+    forced: bool,
+}
+
 /// A refinement's state kept aside, to be exchanged with the live one
 /// ([`Refinement::exchange`]).
 pub(super) struct Aside<P: Predicates> {
@@ -79,8 +90,8 @@ pub(super) struct Refinement<'r, 'q, P: Predicates> {
     polling: Polling<'q>,
     angle: AngleBound,
     encroachment: Encroachment,
-    /// Subsegments to split: ends, and whether a rejected point encroached it (split regardless).
-    encroached: VecDeque<(VertexId, VertexId, bool)>,
+    /// Subsegments to split, first in first out.
+    encroached: VecDeque<Encroached>,
     bad: BadQueue,
     cavity: Cavity,
     /// Subsegments (ends, smaller first) found unsplittable: never tried again.
@@ -243,7 +254,12 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
             && self.may_split(e)
             && !self.is_unsplittable(u, v)
         {
-            self.encroached.push_back((u, v, false));
+            self.encroached.push_back(Encroached {
+                u,
+                v,
+                edge: e,
+                forced: false,
+            });
         }
     }
 
@@ -251,21 +267,34 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
     /// returns how many it split.
     fn split_encroached(&mut self) -> usize {
         let mut splits = 0;
-        while let Some((u, v, forced)) = self.encroached.pop_front() {
+        while let Some(queued) = self.encroached.pop_front() {
             if self.should_stop() {
-                self.encroached.push_front((u, v, forced));
+                self.encroached.push_front(queued);
                 break;
             }
-            let mesh = self.mesh();
-            let Some(e) = mesh.find_edge(u, v).filter(|&e| mesh.is_segment(e)) else {
+            let Some(e) = self.half_edge_of(queued) else {
                 continue;
             };
-            let still = self.encroachment.apex_encroaches(mesh, e);
-            if (forced || still) && self.split_segment(e) {
+            let still = self.encroachment.apex_encroaches(self.mesh(), e);
+            if (queued.forced || still) && self.split_segment(e) {
                 splits += 1;
             }
         }
         splits
+    }
+
+    /// The half-edge from `u` to `v` of a queued subsegment, if it is still a subsegment: mostly
+    /// the half-edge it was queued with (one look, where finding it takes a turn around `u`).
+    fn half_edge_of(&self, queued: Encroached) -> Option<EdgeId> {
+        let mesh = self.mesh();
+        let Encroached { u, v, edge, .. } = queued;
+        let e = if edge.raw() < mesh.edge_count() && mesh.origin(edge) == u && mesh.dest(edge) == v
+        {
+            edge // the one half-edge from u to v
+        } else {
+            mesh.find_edge(u, v)?
+        };
+        mesh.is_segment(e).then_some(e)
     }
 
     /// Splits the subsegment of half-edge `e`; returns whether it did. It does not when the
@@ -399,7 +428,12 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
     fn split_instead(&mut self, subsegments: &[(VertexId, VertexId, EdgeId)], bad: BadTriangle) {
         for &(u, v, e) in subsegments {
             if self.may_split(e) && !self.is_unsplittable(u, v) {
-                self.encroached.push_back((u, v, true));
+                self.encroached.push_back(Encroached {
+                    u,
+                    v,
+                    edge: e,
+                    forced: true,
+                });
             }
         }
         if self.split_encroached() > 0 {
