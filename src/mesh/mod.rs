@@ -15,7 +15,7 @@
 //! up to date). The parts: `ids` the typed ids; `ops` the topological operations (splits, flips,
 //! ghosts, retaining part of a mesh); `star` the half-edges around a vertex; `walk` the edges
 //! along a line; `legalize` Lawson's flips with a policy; `raw` unchecked access for the bulk
-//! Delaunay build and the `u32` view that refinement still uses.
+//! Delaunay build and the `u32` view that the output numbering reads.
 
 use crate::geometry::Point;
 

@@ -1,17 +1,15 @@
 //! Below the typed API: unchecked access for the bulk Delaunay build's inner loop, whose safety
 //! rests on the mesh's invariants, and the `u32` view ([`RawMesh`]) with the `u32` half-edge
-//! arithmetic ([`next`], [`prev`], [`triangle_of`]) that refinement still uses.
-//!
-//! Compatibility shim: `RawMesh`, [`Mesh::raw`], the `u32` functions and constants here exist
-//! for `algorithms::refine`, which has not been converted to typed ids yet; they go once it is.
+//! arithmetic ([`next`], [`prev`], [`triangle_of`]) for code that works in raw indices: the
+//! output numbering (`assemble`, `voronoi`), whose lists are indexed by raw half-edges and
+//! triangles, the half-edge arithmetic inside `ops`, and the segment-insertion tests of
+//! `constrain`.
 
 use super::{EdgeId, Mesh, TriangleId, VertexId};
 use crate::geometry::Point;
 
-/// The vertex at infinity as a raw `u32` (refinement's compatibility view).
+/// The vertex at infinity as a raw `u32`.
 pub const GHOST: u32 = u32::MAX;
-/// "No half-edge / no triangle / no segment" as a raw `u32`.
-pub const NONE: u32 = u32::MAX;
 
 /// The half-edge after `e` in its triangle (counter-clockwise).
 #[inline(always)]
@@ -153,14 +151,14 @@ impl Mesh {
         unsafe { *self.twins.get_unchecked_mut(e.index()) = twin.raw() };
     }
 
-    /// The `u32` view of the mesh (compatibility shim for refinement; see the module docs).
+    /// The `u32` view of the mesh (see the module docs).
     #[inline(always)]
     pub fn raw(&self) -> RawMesh<'_> {
         RawMesh(self)
     }
 }
 
-/// The mesh read through raw `u32` ids (compatibility shim for `algorithms::refine`).
+/// The mesh read through raw `u32` ids, for the output numbering (see the module docs).
 #[derive(Clone, Copy)]
 pub struct RawMesh<'a>(&'a Mesh);
 
@@ -194,10 +192,6 @@ impl<'a> RawMesh<'a> {
         self.0.triangle(TriangleId::new(t)).map(VertexId::raw)
     }
     #[inline(always)]
-    pub fn is_ghost(self, t: u32) -> bool {
-        self.0.is_ghost(TriangleId::new(t))
-    }
-    #[inline(always)]
     pub fn triangle_count(self) -> u32 {
         self.0.triangle_count()
     }
@@ -213,14 +207,10 @@ impl<'a> RawMesh<'a> {
     pub fn is_segment(self, e: u32) -> bool {
         self.0.is_segment(EdgeId::new(e))
     }
-    /// The tracked outgoing half-edge of `v`, or [`NONE`].
+    /// The tracked outgoing half-edge of `v`, or [`super::NONE`].
     #[inline(always)]
     pub fn vertex_edge(self, v: u32) -> u32 {
         self.0.vertex_edge[v as usize]
-    }
-    #[inline(always)]
-    pub fn tag(self, t: u32) -> u32 {
-        self.0.tag[t as usize]
     }
     pub fn find_edge(self, a: u32, b: u32) -> Option<u32> {
         self.0

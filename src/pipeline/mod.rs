@@ -375,7 +375,7 @@ fn insert_segments<P: Predicates>(
             }
             continue;
         }
-        let id = cdt.new_segment_id(marker, a, b);
+        let id = cdt.new_segment_id(marker, VertexId::new(a), VertexId::new(b));
         inserted.insert(key(a, b), id);
         cdt.insert_segment(VertexId::new(a), VertexId::new(b), id)?;
         if i % 4096 == 4095 {

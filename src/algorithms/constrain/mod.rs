@@ -82,9 +82,8 @@ pub struct Constrainer<P: Predicates> {
     pub crossings: Vec<Crossing>,
     /// The marker of each segment id (the ids that [`Mesh::segment`](crate::mesh::Mesh) holds).
     pub markers: Vec<i32>,
-    /// The endpoints of each segment id, as given (before crossings split it); raw vertex ids
-    /// (or `NONE`s), as refinement reads them.
-    pub ends: Vec<(u32, u32)>,
+    /// The endpoints of each segment id, as given (before crossings split it).
+    pub ends: Vec<(VertexId, VertexId)>,
     /// `s`: recover segments by inserting midpoints (a conforming triangulation) instead of
     /// flipping crossing edges away.
     pub split_segments: bool,
@@ -211,9 +210,8 @@ impl<P: Predicates> Constrainer<P> {
         P::orient2d(self.pt(a), self.pt(b), self.pt(c))
     }
 
-    /// Registers a segment from `a` to `b` (or `NONE`s for a family of segments) with its
-    /// marker; returns the new segment's id.
-    pub fn new_segment_id(&mut self, marker: i32, a: u32, b: u32) -> u32 {
+    /// Registers a segment from `a` to `b` with its marker; returns the new segment's id.
+    pub fn new_segment_id(&mut self, marker: i32, a: VertexId, b: VertexId) -> u32 {
         self.markers.push(marker);
         self.ends.push((a, b));
         (self.markers.len() - 1) as u32
@@ -580,7 +578,7 @@ impl<P: Predicates> Constrainer<P> {
                 && mesh.apex(mesh.twin(e)) == GHOST
                 && mesh.segment_of(e) == NONE
             {
-                let id = self.new_segment_id(marker, a.raw(), b.raw());
+                let id = self.new_segment_id(marker, a, b);
                 self.inserter.mesh_mut().set_segment(e, id);
             }
         }

@@ -51,7 +51,7 @@ fn random_segments_are_recovered() {
         for k in 0..10 {
             let a = (splitmix64(&mut s) % n as u64) as u32;
             let b = (splitmix64(&mut s) % n as u64) as u32;
-            let id = cdt.new_segment_id(k % 3, a, b);
+            let id = cdt.new_segment_id(k % 3, VertexId::new(a), VertexId::new(b));
             let m = cdt.mesh().raw();
             let segments_before: Vec<(u32, u32)> = (0..m.edge_count())
                 .filter(|&e| m.is_segment(e))
@@ -118,7 +118,7 @@ fn star_polygon_in_random_orders() {
         }
         for (k, &i) in order.iter().enumerate() {
             let (a, b) = (i, (i + 1) % n as u32);
-            let id = cdt.new_segment_id(1, a, b);
+            let id = cdt.new_segment_id(1, VertexId::new(a), VertexId::new(b));
             cdt.insert_segment(VertexId::new(a), VertexId::new(b), id)
                 .unwrap();
             if k % 50 == 0 || k + 1 == n {

@@ -1,6 +1,8 @@
 //! The attributes of new vertices: interpolated linearly from the vertices of the segment or the
 //! triangle they are put on.
 
+use crate::mesh::VertexId;
+
 /// Per vertex, `count` values (the caller's array, which new vertices are appended to).
 pub(super) struct Attributes<'a> {
     values: &'a mut Vec<f64>,
@@ -13,12 +15,12 @@ impl<'a> Attributes<'a> {
     }
 
     /// Appends the attributes of a vertex at parameter `t` from `u` to `v`.
-    pub(super) fn push_on_segment(&mut self, u: u32, v: u32, t: f64) {
+    pub(super) fn push_on_segment(&mut self, u: VertexId, v: VertexId, t: f64) {
         let k = self.count;
         for i in 0..k {
             let (at_u, at_v) = (
-                self.values[u as usize * k + i],
-                self.values[v as usize * k + i],
+                self.values[u.index() * k + i],
+                self.values[v.index() * k + i],
             );
             self.values.push(at_u + t * (at_v - at_u));
         }
@@ -26,13 +28,13 @@ impl<'a> Attributes<'a> {
 
     /// Appends the attributes of a vertex at affine frame coordinates `(xi, eta)` in triangle
     /// `(a, b, c)`: `a + xi·(b − a) + eta·(c − a)`.
-    pub(super) fn push_in_triangle(&mut self, [a, b, c]: [u32; 3], xi: f64, eta: f64) {
+    pub(super) fn push_in_triangle(&mut self, [a, b, c]: [VertexId; 3], xi: f64, eta: f64) {
         let k = self.count;
         for i in 0..k {
             let (va, vb, vc) = (
-                self.values[a as usize * k + i],
-                self.values[b as usize * k + i],
-                self.values[c as usize * k + i],
+                self.values[a.index() * k + i],
+                self.values[b.index() * k + i],
+                self.values[c.index() * k + i],
             );
             self.values.push(va + xi * (vb - va) + eta * (vc - va));
         }

@@ -4,12 +4,12 @@
 use super::attributes::Attributes;
 use super::refinement::{Refinement, RunEnd, Settings};
 use super::report::{Report, Warning};
-use super::{inside, points, tag, Quality, VertexKind, GUARANTEED_ANGLE};
+use super::{inside, Quality, VertexKind, GUARANTEED_ANGLE};
 use crate::algorithms::constrain::Constrainer;
 use crate::algorithms::domain::Domain;
 use crate::data::{Phase, Progress, ProgressFn};
 use crate::geometry::Predicates;
-use crate::mesh::raw::RawMesh;
+use crate::mesh::Mesh;
 
 /// Above that angle, refinement first runs straight toward it with a budget of this many new
 /// vertices per triangle of the unrefined mesh (plus what the area bound asks for).
@@ -38,7 +38,7 @@ pub fn refine<P: Predicates>(
     attributes: &mut Vec<f64>,
     attribute_count: usize,
 ) -> Report {
-    let mesh = cdt.mesh().raw();
+    let mesh = cdt.mesh();
     let (floor2, extent2) = resolution(mesh);
     // Without the user's own test or budget: a run that makes far more vertices than the input
     // and the area bounds account for is stopped (an input a hair's breadth wide, such as nearly
@@ -48,7 +48,7 @@ pub fn refine<P: Predicates>(
             + size_estimate::<P>(mesh, domain, quality);
         expected.max(RUNAWAY_MINIMUM)
     });
-    let kinds = vec![VertexKind::Input; points(mesh).len()];
+    let kinds = vec![VertexKind::Input; mesh.points().len()];
     cdt.snap_vertices_onto_segments(floor2);
     let settings = Settings {
         domain,
@@ -234,9 +234,9 @@ impl<P: Predicates> Driver<'_, '_, P> {
 /// The resolution refinement works at, from the extent of the vertices: the squared floor
 /// below which no edge is made (2⁻⁴⁰ of the extent, far above the resolution of doubles there)
 /// and the squared extent.
-fn resolution(mesh: RawMesh<'_>) -> (f64, f64) {
+fn resolution(mesh: &Mesh) -> (f64, f64) {
     let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
-    for p in points(mesh) {
+    for p in mesh.points() {
         for i in 0..2 {
             lo[i] = lo[i].min(p[i]);
             hi[i] = hi[i].max(p[i]);
@@ -251,16 +251,15 @@ fn resolution(mesh: RawMesh<'_>) -> (f64, f64) {
     (floor * floor, extent * extent)
 }
 
-fn inside_triangle_count(mesh: RawMesh<'_>) -> u64 {
-    (0..mesh.triangle_count())
-        .filter(|&t| inside(mesh, t))
-        .count() as u64
+fn inside_triangle_count(mesh: &Mesh) -> u64 {
+    mesh.triangles().filter(|&t| inside(mesh, t)).count() as u64
 }
 
 /// About how many vertices the area bounds (global, regional, per triangle) ask for: four times
 /// the number of triangles of the largest allowed areas that cover the domain.
-fn size_estimate<P: Predicates>(mesh: RawMesh<'_>, domain: &Domain, quality: &Quality<'_>) -> u64 {
-    let triangles: f64 = (0..mesh.triangle_count())
+fn size_estimate<P: Predicates>(mesh: &Mesh, domain: &Domain, quality: &Quality<'_>) -> u64 {
+    let triangles: f64 = mesh
+        .triangles()
         .filter(|&t| inside(mesh, t))
         .map(|t| {
             let [a, b, c] = mesh.triangle(t).map(|v| mesh.point(v));
@@ -268,7 +267,7 @@ fn size_estimate<P: Predicates>(mesh: RawMesh<'_>, domain: &Domain, quality: &Qu
             let regional = if quality.variable_area {
                 domain
                     .max_area
-                    .get(tag(mesh, t) as usize)
+                    .get(mesh.tag(t) as usize)
                     .copied()
                     .filter(|&m| m > 0.0)
             } else {

@@ -4,10 +4,10 @@
 //! §4.1).
 
 use super::split_point::min_angle_sin2;
-use super::{edges_around, inside, VertexKind};
+use super::{inside, VertexKind};
 use crate::algorithms::delaunay::Location;
 use crate::geometry::{Point, Predicates};
-use crate::mesh::raw::{triangle_of, RawMesh, GHOST, NONE};
+use crate::mesh::{EdgeId, Mesh, TriangleId, VertexId, GHOST};
 
 /// The encroachment test for an angle bound θ.
 #[derive(Clone, Copy, Debug)]
@@ -47,11 +47,11 @@ impl Encroachment {
 
     /// Whether an apex beside the subsegment of half-edge `e`, in the domain, encroaches it (in
     /// a constrained Delaunay triangulation, no other vertex can if these do not).
-    pub(super) fn apex_encroaches(&self, mesh: RawMesh<'_>, e: u32) -> bool {
+    pub(super) fn apex_encroaches(&self, mesh: &Mesh, e: EdgeId) -> bool {
         let (pu, pv) = (mesh.point(mesh.origin(e)), mesh.point(mesh.dest(e)));
         [e, mesh.twin(e)].iter().any(|&h| {
             let w = mesh.apex(h);
-            w != GHOST && inside(mesh, triangle_of(h)) && self.encroaches(pu, pv, mesh.point(w))
+            w != GHOST && inside(mesh, h.triangle()) && self.encroaches(pu, pv, mesh.point(w))
         })
     }
 }
@@ -61,8 +61,12 @@ impl Encroachment {
 #[derive(Default)]
 pub(super) struct Cavity {
     /// The triangles whose circumcircles contain the point.
-    triangles: Vec<u32>,
-    stack: Vec<u32>,
+    triangles: Vec<TriangleId>,
+    stack: Vec<TriangleId>,
+    /// Per triangle slot: the number of the last cavity it was in (`generation` for this one),
+    /// so that membership is one look instead of a scan of `triangles`.
+    stamp: Vec<u32>,
+    generation: u32,
 }
 
 impl Cavity {
@@ -71,25 +75,35 @@ impl Cavity {
     /// does not cross segments), with `x` inside their diametral lenses or circles.
     pub(super) fn encroached_by<P: Predicates>(
         &mut self,
-        mesh: RawMesh<'_>,
+        mesh: &Mesh,
         encroachment: &Encroachment,
         x: Point,
         location: Location,
-    ) -> Vec<(u32, u32, u32)> {
-        let (stack, seen) = (&mut self.stack, &mut self.triangles);
+    ) -> Vec<(VertexId, VertexId, EdgeId)> {
+        self.generation = self.generation.wrapping_add(1);
+        if self.generation == 0 {
+            self.stamp.fill(0);
+            self.generation = 1;
+        }
+        self.stamp.resize(mesh.triangle_count() as usize, 0);
+        let generation = self.generation;
+        let (stack, seen, stamp) = (&mut self.stack, &mut self.triangles, &mut self.stamp);
         stack.clear();
         seen.clear();
         match location {
-            Location::InTriangle(t) | Location::Outside(t) => stack.push(t.raw()),
+            Location::InTriangle(t) | Location::Outside(t) => stack.push(t),
             Location::OnEdge(e) => {
-                stack.extend_from_slice(&[triangle_of(e.raw()), triangle_of(mesh.twin(e.raw()))])
+                stack.extend_from_slice(&[e.triangle(), mesh.twin(e).triangle()])
             }
             Location::OnVertex(_) => {}
         }
         seen.extend_from_slice(stack);
+        for t in seen.iter() {
+            stamp[t.index()] = generation;
+        }
         let mut found = Vec::new();
         while let Some(t) = stack.pop() {
-            for e in 3 * t..3 * t + 3 {
+            for e in t.edges() {
                 if mesh.is_segment(e) {
                     let (u, v) = (mesh.origin(e), mesh.dest(e));
                     if encroachment.encroaches(mesh.point(u), mesh.point(v), x)
@@ -101,12 +115,13 @@ impl Cavity {
                     }
                     continue;
                 }
-                let n = triangle_of(mesh.twin(e));
-                if seen.contains(&n) || !inside(mesh, n) || mesh.is_ghost(n) {
+                let n = mesh.twin(e).triangle();
+                if stamp[n.index()] == generation || !inside(mesh, n) || mesh.is_ghost(n) {
                     continue;
                 }
                 let [a, b, c] = mesh.triangle(n).map(|v| mesh.point(v));
                 if P::incircle(a, b, c, x) > 0.0 {
+                    stamp[n.index()] = generation;
                     seen.push(n);
                     stack.push(n);
                 }
@@ -116,12 +131,15 @@ impl Cavity {
     }
 
     /// The quality ([`min_angle_sin2`]) of the worst triangle that inserting `x` makes: `x`
-    /// joined to the edges around the cavity that [`Self::encroached_by`] last found for it.
-    pub(super) fn worst_triangle_made(&self, mesh: RawMesh<'_>, x: Point) -> f64 {
+    /// joined to the edges around the cavity that [`Self::encroached_by`] last found for it (in
+    /// the same mesh).
+    pub(super) fn worst_triangle_made(&self, mesh: &Mesh, x: Point) -> f64 {
         let mut worst = f64::INFINITY;
         for &t in &self.triangles {
-            for e in 3 * t..3 * t + 3 {
-                if !mesh.is_segment(e) && self.triangles.contains(&triangle_of(mesh.twin(e))) {
+            for e in t.edges() {
+                if !mesh.is_segment(e)
+                    && self.stamp[mesh.twin(e).triangle().index()] == self.generation
+                {
                     continue;
                 }
                 worst = worst.min(min_angle_sin2([
@@ -142,17 +160,17 @@ impl Cavity {
 /// corner, so that splits on two segments meet on common shells. Returns the parameter and the
 /// kind of the new vertex (the corner and the exponent of its distance).
 pub(super) fn split_parameter(
-    mesh: RawMesh<'_>,
+    mesh: &Mesh,
     kinds: &[VertexKind],
-    u: u32,
-    v: u32,
+    u: VertexId,
+    v: VertexId,
 ) -> (f64, VertexKind) {
     let (cu, cv) = (
         sharpest_corner(mesh, kinds, u),
         sharpest_corner(mesh, kinds, v),
     );
     let midpoint = VertexKind::OnSegment {
-        corner: NONE,
+        corner: VertexId::NONE,
         shell: 0,
     };
     if cu.is_none() && cv.is_none() {
@@ -206,9 +224,9 @@ const BOUNDARY_SLIVER: f64 = 1.0 / (1u64 << 20) as f64;
 ///
 /// The domain's area thus changes by at most that fraction of the triangles split at its
 /// boundary.
-pub(super) fn splits_faithfully<P: Predicates>(mesh: RawMesh<'_>, e: u32, p: Point) -> bool {
+pub(super) fn splits_faithfully<P: Predicates>(mesh: &Mesh, e: EdgeId, p: Point) -> bool {
     let sides = [e, mesh.twin(e)];
-    let in_domain = sides.map(|h| mesh.apex(h) != GHOST && inside(mesh, triangle_of(h)));
+    let in_domain = sides.map(|h| mesh.apex(h) != GHOST && inside(mesh, h.triangle()));
     let splits_cleanly = sides.iter().all(|&h| {
         let w = mesh.apex(h);
         let (a, b) = (mesh.point(mesh.origin(h)), mesh.point(mesh.dest(h)));
@@ -231,12 +249,12 @@ pub(super) fn splits_faithfully<P: Predicates>(mesh: RawMesh<'_>, e: u32, p: Poi
 /// such angle (larger is sharper). `None` for vertices inserted by refinement and for vertices
 /// whose segments meet at right or obtuse angles only. The smallest angle is between two
 /// segments consecutive around `x`, so one turn around it suffices.
-fn sharpest_corner(mesh: RawMesh<'_>, kinds: &[VertexKind], x: u32) -> Option<f64> {
-    if matches!(kinds[x as usize], VertexKind::OnSegment { .. }) {
+fn sharpest_corner(mesh: &Mesh, kinds: &[VertexKind], x: VertexId) -> Option<f64> {
+    if matches!(kinds[x.index()], VertexKind::OnSegment { .. }) {
         return None;
     }
     let o = mesh.point(x);
-    let direction = |e: u32| {
+    let direction = |e: EdgeId| {
         let p = mesh.point(mesh.dest(e));
         let d = [p[0] - o[0], p[1] - o[1]];
         let length = (d[0] * d[0] + d[1] * d[1]).sqrt();
@@ -250,7 +268,7 @@ fn sharpest_corner(mesh: RawMesh<'_>, kinds: &[VertexKind], x: u32) -> Option<f6
             sharpest = Some(cos);
         }
     };
-    for e in edges_around(mesh, x).filter(|&e| mesh.is_segment(e)) {
+    for e in mesh.star(x).filter(|&e| mesh.is_segment(e)) {
         let d = direction(e);
         match previous {
             Some(p) => consider(p, d),

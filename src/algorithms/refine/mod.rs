@@ -21,9 +21,7 @@
 //! segment it cannot split, and stops at the Steiner-point budget (`S`) or when cancelled.
 
 use crate::data::{ProgressFn, UnsuitableFn};
-use crate::geometry::Point;
-use crate::mesh::raw::{prev, RawMesh};
-use crate::mesh::OUTSIDE;
+use crate::mesh::{Mesh, TriangleId, VertexId, OUTSIDE};
 
 // The parts, each a type with its own state:
 mod attributes; // `Attributes`: the interpolated attributes of new vertices
@@ -69,39 +67,15 @@ enum VertexKind {
     /// An input vertex (or a crossing of input segments).
     Input,
     /// A vertex inserted on a segment by refinement; `corner`: the input vertex it was put at a
-    /// power-of-two distance from (concentric shells), or [`NONE`](crate::mesh::NONE) (a
-    /// midpoint); `shell`: that distance's exponent (the distance is 2^shell; 0 for a midpoint).
-    OnSegment { corner: u32, shell: i32 },
+    /// power-of-two distance from (concentric shells), or [`VertexId::NONE`] (a midpoint);
+    /// `shell`: that distance's exponent (the distance is 2^shell; 0 for a midpoint).
+    OnSegment { corner: VertexId, shell: i32 },
     /// A vertex inserted inside the domain by refinement.
     Free,
 }
 
-// Reading the mesh: the only places where refinement reads `Mesh` fields that have no accessor
-// (yet); everything else goes through its methods.
-
-/// The mesh's vertices.
-fn points(mesh: RawMesh<'_>) -> &[Point] {
-    mesh.points()
-}
-
-/// The domain tag of triangle `t` ([`OUTSIDE`], or which part of the domain it belongs to).
-fn tag(mesh: RawMesh<'_>, t: u32) -> u32 {
-    mesh.tag(t)
-}
-
-/// Whether triangle `t` belongs to the domain (refinement works on the domain alone).
-fn inside(mesh: RawMesh<'_>, t: u32) -> bool {
-    tag(mesh, t) != OUTSIDE
-}
-
-/// The half-edges out of vertex `v`, one turn around it (needs vertex tracking).
-fn edges_around(mesh: RawMesh<'_>, v: u32) -> impl Iterator<Item = u32> + '_ {
-    let start = mesh.vertex_edge(v);
-    let mut next_edge = Some(start);
-    std::iter::from_fn(move || {
-        let e = next_edge?;
-        let following = mesh.twin(prev(e));
-        next_edge = (following != start).then_some(following);
-        Some(e)
-    })
+/// Whether triangle `t` belongs to the domain (refinement works on the domain alone; the
+/// triangles outside it are tagged [`OUTSIDE`]).
+fn inside(mesh: &Mesh, t: TriangleId) -> bool {
+    mesh.tag(t) != OUTSIDE
 }

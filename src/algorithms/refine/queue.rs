@@ -3,14 +3,16 @@
 
 use std::collections::VecDeque;
 
+use crate::mesh::{TriangleId, VertexId};
+
 /// A queued bad triangle: its corners, and the slot it had when queued (it may be gone by the
 /// time it is taken out, and the slot reused).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) struct BadTriangle {
     /// Queue bucket: higher goes first.
     pub(super) bucket: usize,
-    pub(super) corners: [u32; 3],
-    pub(super) slot: u32,
+    pub(super) corners: [VertexId; 3],
+    pub(super) slot: TriangleId,
 }
 
 /// Bad triangles in buckets (a bucket queue: constant time per operation, where a binary heap
@@ -24,7 +26,7 @@ pub(super) struct BadTriangle {
 /// again as long on a million triangles (more flips, longer walks and cavities).
 #[derive(Default)]
 pub(super) struct BadQueue {
-    buckets: Vec<VecDeque<([u32; 3], u32)>>,
+    buckets: Vec<VecDeque<([VertexId; 3], TriangleId)>>,
     /// No bucket above this one holds anything.
     top: usize,
 }

@@ -12,13 +12,12 @@ use super::encroachment::{split_parameter, splits_faithfully, Cavity, Encroachme
 use super::queue::{BadQueue, BadTriangle};
 use super::split_point::{min_angle_sin2, AngleBound};
 use super::walk::{walk, Walk};
-use super::{edges_around, inside, tag, Quality, VertexKind};
+use super::{inside, Quality, VertexKind};
 use crate::algorithms::constrain::Constrainer;
 use crate::algorithms::delaunay::Location;
 use crate::algorithms::domain::Domain;
 use crate::geometry::{Point, Predicates};
-use crate::mesh::raw::{next, triangle_of, RawMesh, GHOST};
-use crate::mesh::{EdgeId, VertexId};
+use crate::mesh::{EdgeId, Mesh, TriangleId, VertexId, GHOST};
 
 /// What a refinement works toward, and at what resolution: fixed for all its runs.
 pub(super) struct Settings<'r, 'q> {
@@ -54,6 +53,17 @@ pub(super) struct Tally {
     pub(super) kept_whole: u64,
 }
 
+/// A queued subsegment to split: its ends, the half-edge from `u` to `v` when it was queued
+/// (it may be gone by the time it is taken out, and the slot reused), and whether a rejected
+/// point encroached it (split regardless).
+#[derive(Clone, Copy, Debug)]
+struct Encroached {
+    u: VertexId,
+    v: VertexId,
+    edge: EdgeId,
+    forced: bool,
+}
+
 /// A refinement's state kept aside, to be exchanged with the live one
 /// ([`Refinement::exchange`]).
 pub(super) struct Aside<P: Predicates> {
@@ -61,7 +71,7 @@ pub(super) struct Aside<P: Predicates> {
     attributes: Vec<f64>,
     kinds: Vec<VertexKind>,
     tally: Tally,
-    unsplittable: HashSet<(u32, u32)>,
+    unsplittable: HashSet<(VertexId, VertexId)>,
 }
 
 impl<P: Predicates> Aside<P> {
@@ -80,17 +90,17 @@ pub(super) struct Refinement<'r, 'q, P: Predicates> {
     polling: Polling<'q>,
     angle: AngleBound,
     encroachment: Encroachment,
-    /// Subsegments to split: ends, and whether a rejected point encroached it (split regardless).
-    encroached: VecDeque<(u32, u32, bool)>,
+    /// Subsegments to split, first in first out.
+    encroached: VecDeque<Encroached>,
     bad: BadQueue,
     cavity: Cavity,
     /// Subsegments (ends, smaller first) found unsplittable: never tried again.
-    unsplittable: HashSet<(u32, u32)>,
+    unsplittable: HashSet<(VertexId, VertexId)>,
     tally: Tally,
     /// Where the current run stops.
     limit: Option<u64>,
     /// Scratch space: the half-edges around a new vertex.
-    around: Vec<u32>,
+    around: Vec<EdgeId>,
 }
 
 impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
@@ -122,8 +132,8 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
         }
     }
 
-    pub(super) fn mesh(&self) -> RawMesh<'_> {
-        self.cdt.mesh().raw()
+    pub(super) fn mesh(&self) -> &Mesh {
+        self.cdt.mesh()
     }
 
     pub(super) fn tally(&self) -> Tally {
@@ -176,7 +186,8 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
     /// Splits encroached subsegments, then bad triangles, until none is left or a limit stops.
     fn refine_all(&mut self) {
         let mesh = self.mesh();
-        let segments: Vec<u32> = (0..3 * mesh.triangle_count())
+        let segments: Vec<EdgeId> = mesh
+            .edges()
             .filter(|&e| mesh.is_segment(e) && e < mesh.twin(e))
             .collect();
         for e in segments {
@@ -184,7 +195,7 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
         }
         self.split_encroached();
         self.bad.clear();
-        for t in 0..self.mesh().triangle_count() {
+        for t in self.mesh().triangles() {
             if inside(self.mesh(), t) {
                 self.check_triangle(t);
             }
@@ -201,14 +212,14 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
 
     /// The triangle a queued bad triangle is now, if it is still there: mostly in the slot it
     /// was queued from (one look, where finding the edge takes a turn around a vertex).
-    fn still_there(&self, bad: BadTriangle) -> Option<u32> {
+    fn still_there(&self, bad: BadTriangle) -> Option<TriangleId> {
         let mesh = self.mesh();
-        if bad.slot < mesh.triangle_count() && mesh.triangle(bad.slot) == bad.corners {
+        if bad.slot.raw() < mesh.triangle_count() && mesh.triangle(bad.slot) == bad.corners {
             return Some(bad.slot);
         }
         let [a, b, c] = bad.corners;
         let e = mesh.find_edge(a, b)?;
-        (mesh.apex(e) == c).then_some(triangle_of(e))
+        (mesh.apex(e) == c).then_some(e.triangle())
     }
 
     /// Whether to stop: the caller cancelled (polled now and then), or the limit is reached.
@@ -222,28 +233,33 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
     }
 
     /// Whether the segment of half-edge `e` may receive Steiner points (`Y`, `YY`).
-    fn may_split(&self, e: u32) -> bool {
+    fn may_split(&self, e: EdgeId) -> bool {
         let mesh = self.mesh();
         match self.settings.quality.no_steiner_on_segments {
             0 => true,
-            1 => inside(mesh, triangle_of(e)) && inside(mesh, triangle_of(mesh.twin(e))),
+            1 => inside(mesh, e.triangle()) && inside(mesh, mesh.twin(e).triangle()),
             _ => false,
         }
     }
 
-    fn is_unsplittable(&self, u: u32, v: u32) -> bool {
+    fn is_unsplittable(&self, u: VertexId, v: VertexId) -> bool {
         self.unsplittable.contains(&(u.min(v), u.max(v)))
     }
 
     /// Queues the subsegment of half-edge `e` if an apex beside it encroaches it.
-    fn check_segment(&mut self, e: u32) {
+    fn check_segment(&mut self, e: EdgeId) {
         let mesh = self.mesh();
         let (u, v) = (mesh.origin(e), mesh.dest(e));
         if self.encroachment.apex_encroaches(mesh, e)
             && self.may_split(e)
             && !self.is_unsplittable(u, v)
         {
-            self.encroached.push_back((u, v, false));
+            self.encroached.push_back(Encroached {
+                u,
+                v,
+                edge: e,
+                forced: false,
+            });
         }
     }
 
@@ -251,28 +267,41 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
     /// returns how many it split.
     fn split_encroached(&mut self) -> usize {
         let mut splits = 0;
-        while let Some((u, v, forced)) = self.encroached.pop_front() {
+        while let Some(queued) = self.encroached.pop_front() {
             if self.should_stop() {
-                self.encroached.push_front((u, v, forced));
+                self.encroached.push_front(queued);
                 break;
             }
-            let mesh = self.mesh();
-            let Some(e) = mesh.find_edge(u, v).filter(|&e| mesh.is_segment(e)) else {
+            let Some(e) = self.half_edge_of(queued) else {
                 continue;
             };
-            let still = self.encroachment.apex_encroaches(mesh, e);
-            if (forced || still) && self.split_segment(e) {
+            let still = self.encroachment.apex_encroaches(self.mesh(), e);
+            if (queued.forced || still) && self.split_segment(e) {
                 splits += 1;
             }
         }
         splits
     }
 
+    /// The half-edge from `u` to `v` of a queued subsegment, if it is still a subsegment: mostly
+    /// the half-edge it was queued with (one look, where finding it takes a turn around `u`).
+    fn half_edge_of(&self, queued: Encroached) -> Option<EdgeId> {
+        let mesh = self.mesh();
+        let Encroached { u, v, edge, .. } = queued;
+        let e = if edge.raw() < mesh.edge_count() && mesh.origin(edge) == u && mesh.dest(edge) == v
+        {
+            edge // the one half-edge from u to v
+        } else {
+            mesh.find_edge(u, v)?
+        };
+        mesh.is_segment(e).then_some(e)
+    }
+
     /// Splits the subsegment of half-edge `e`; returns whether it did. It does not when the
     /// pieces would be shorter than the floor, or when the rounded split point would make
     /// inverted triangles or move the domain's boundary by more than rounding
     /// ([`splits_faithfully`]). Such a subsegment is never tried again.
-    fn split_segment(&mut self, e: u32) -> bool {
+    fn split_segment(&mut self, e: EdgeId) -> bool {
         let mesh = self.mesh();
         let (u, v) = (mesh.origin(e), mesh.dest(e));
         let (t, kind) = split_parameter(mesh, &self.kinds, u, v);
@@ -287,16 +316,14 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
         }
         let vertex = self.new_vertex(p, kind);
         self.attributes.push_on_segment(u, v, t);
-        let _ = self
-            .cdt
-            .insert_at(VertexId::new(vertex), Location::OnEdge(EdgeId::new(e)));
-        self.cdt.settle(VertexId::new(vertex));
+        let _ = self.cdt.insert_at(vertex, Location::OnEdge(e));
+        self.cdt.settle(vertex);
         self.after_insertion(vertex);
         true
     }
 
     /// Queues triangle `t` if it is bad: skinny, too big, or so by the user's test.
-    fn check_triangle(&mut self, t: u32) {
+    fn check_triangle(&mut self, t: TriangleId) {
         let mesh = self.mesh();
         let corners = mesh.triangle(t);
         let [pa, pb, pc] = corners.map(|v| mesh.point(v));
@@ -310,7 +337,7 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
                 self.settings
                     .domain
                     .max_area
-                    .get(tag(mesh, t) as usize)
+                    .get(mesh.tag(t) as usize)
                     .copied()
                     .unwrap_or(-1.0)
             } else {
@@ -338,7 +365,7 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
 
     /// Splits bad triangle `t` at its split point, or — when a segment hides the point or the
     /// point would encroach subsegments — splits those instead (Ruppert's rule).
-    fn split_triangle(&mut self, t: u32, bad: BadTriangle) {
+    fn split_triangle(&mut self, t: TriangleId, bad: BadTriangle) {
         let corners = self.mesh().triangle(t);
         let points = corners.map(|v| self.mesh().point(v));
         let (x, xi, eta) = self.angle.split_point(points);
@@ -361,7 +388,7 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
                     return;
                 }
                 let mut encroached = self.cavity.encroached_by::<P>(
-                    self.cdt.mesh().raw(),
+                    self.cdt.mesh(),
                     &self.encroachment,
                     x,
                     location,
@@ -388,7 +415,7 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
                 }
                 let vertex = self.new_vertex(x, VertexKind::Free);
                 self.attributes.push_in_triangle(corners, xi, eta);
-                let _ = self.cdt.insert_at(VertexId::new(vertex), location);
+                let _ = self.cdt.insert_at(vertex, location);
                 self.after_insertion(vertex);
             }
         }
@@ -398,10 +425,15 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
     /// split point encroaches on them, and queues the triangle again to be reconsidered. Only if
     /// some subsegment was split: otherwise the triangle is left as it is, so that every time a
     /// triangle is queued again refinement has made progress.
-    fn split_instead(&mut self, subsegments: &[(u32, u32, u32)], bad: BadTriangle) {
+    fn split_instead(&mut self, subsegments: &[(VertexId, VertexId, EdgeId)], bad: BadTriangle) {
         for &(u, v, e) in subsegments {
             if self.may_split(e) && !self.is_unsplittable(u, v) {
-                self.encroached.push_back((u, v, true));
+                self.encroached.push_back(Encroached {
+                    u,
+                    v,
+                    edge: e,
+                    forced: true,
+                });
             }
         }
         if self.split_encroached() > 0 {
@@ -417,8 +449,8 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
     fn too_close(&self, x: Point, location: Location) -> bool {
         let mesh = self.mesh();
         let triangles = match location {
-            Location::InTriangle(t) | Location::Outside(t) => [t.raw(), t.raw()],
-            Location::OnEdge(e) => [triangle_of(e.raw()), triangle_of(mesh.twin(e.raw()))],
+            Location::InTriangle(t) | Location::Outside(t) => [t, t],
+            Location::OnEdge(e) => [e.triangle(), mesh.twin(e).triangle()],
             Location::OnVertex(_) => return true,
         };
         triangles
@@ -432,21 +464,21 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
     }
 
     /// Adds vertex `p` of kind `kind` (its attributes are the caller's to add).
-    fn new_vertex(&mut self, p: Point, kind: VertexKind) -> u32 {
-        let vertex = self.cdt.add_point(p).raw();
+    fn new_vertex(&mut self, p: Point, kind: VertexKind) -> VertexId {
+        let vertex = self.cdt.add_point(p);
         self.kinds.push(kind);
         self.tally.steiner_points += 1;
         vertex
     }
 
     /// Queues what a new vertex may have spoiled: bad triangles around it, encroached segments.
-    fn after_insertion(&mut self, vertex: u32) {
+    fn after_insertion(&mut self, vertex: VertexId) {
         let mut around = std::mem::take(&mut self.around);
         around.clear();
-        around.extend(edges_around(self.mesh(), vertex));
+        around.extend(self.mesh().star(vertex));
         for &e in &around {
-            let t = triangle_of(e);
-            let opposite = next(e);
+            let t = e.triangle();
+            let opposite = e.next();
             if self.mesh().is_segment(opposite) {
                 self.check_segment(opposite);
             }

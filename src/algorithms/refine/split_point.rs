@@ -1,9 +1,9 @@
 //! Bad triangles by their angles and where a bad triangle is split: the angle test with
 //! Triangle's small-angle exemption, and the split point (circumcentre or Üngör's off-centre).
 
-use super::{edges_around, VertexKind};
+use super::VertexKind;
 use crate::geometry::{circumcenter, Point};
-use crate::mesh::raw::{RawMesh, NONE};
+use crate::mesh::{Mesh, VertexId};
 
 /// Two distances from a corner are equal (for the small-angle exemption of vertices not on one
 /// concentric shell: midpoints, or shells around two corners) within this fraction. Measured:
@@ -40,10 +40,10 @@ impl AngleBound {
     /// `ends`: the ends of each segment id, as given.
     pub(super) fn skinny(
         &self,
-        mesh: RawMesh<'_>,
+        mesh: &Mesh,
         kinds: &[VertexKind],
-        ends: &[(u32, u32)],
-        [a, b, c]: [u32; 3],
+        ends: &[(VertexId, VertexId)],
+        [a, b, c]: [VertexId; 3],
         [pa, pb, pc]: [Point; 3],
     ) -> Option<f64> {
         if self.cos2_min_angle > 1.0 {
@@ -84,11 +84,11 @@ impl AngleBound {
     /// configuration is reached (Ruppert 1995, §5).
     fn is_excused_by_small_input_angle(
         &self,
-        mesh: RawMesh<'_>,
+        mesh: &Mesh,
         kinds: &[VertexKind],
-        ends: &[(u32, u32)],
-        u: u32,
-        v: u32,
+        ends: &[(VertexId, VertexId)],
+        u: VertexId,
+        v: VertexId,
     ) -> bool {
         let (
             VertexKind::OnSegment {
@@ -99,7 +99,7 @@ impl AngleBound {
                 corner: cv,
                 shell: sv,
             },
-        ) = (kinds[u as usize], kinds[v as usize])
+        ) = (kinds[u.index()], kinds[v.index()])
         else {
             return false;
         };
@@ -116,7 +116,7 @@ impl AngleBound {
         };
         // Both on the same concentric shell around the same corner: the distances are the same
         // power of two by construction, whatever the rounding of the points.
-        if cu == cv && cu != NONE && su == sv {
+        if cu == cv && cu != VertexId::NONE && su == sv {
             return narrow(mesh.point(cu));
         }
         // Otherwise (midpoints, or shells around different corners), the common vertex of the
@@ -127,7 +127,7 @@ impl AngleBound {
             return false;
         };
         let (ends_u, ends_v) = (ends[segment_u as usize], ends[segment_v as usize]);
-        if segment_u == segment_v || ends_u.0 == NONE || ends_v.0 == NONE {
+        if segment_u == segment_v || ends_u.0 == VertexId::NONE || ends_v.0 == VertexId::NONE {
             return false;
         }
         let common = [ends_u.0, ends_u.1]
@@ -185,8 +185,8 @@ impl AngleBound {
 }
 
 /// The id of a segment that vertex `v` lies on, if any.
-fn segment_through(mesh: RawMesh<'_>, v: u32) -> Option<u32> {
-    edges_around(mesh, v)
+fn segment_through(mesh: &Mesh, v: VertexId) -> Option<u32> {
+    mesh.star(v)
         .find(|&e| mesh.is_segment(e))
         .map(|e| mesh.segment_of(e))
 }
