@@ -2,8 +2,7 @@
 //! rests on the mesh's invariants, and the `u32` view ([`RawMesh`]) with the `u32` half-edge
 //! arithmetic ([`next`], [`prev`], [`triangle_of`]) for code that works in raw indices: the
 //! output numbering (`assemble`, `voronoi`), whose lists are indexed by raw half-edges and
-//! triangles, the half-edge arithmetic inside `ops`, and the segment-insertion tests of
-//! `constrain`.
+//! triangles, and the half-edge arithmetic inside `ops`.
 
 use super::{EdgeId, Mesh, TriangleId, VertexId};
 use crate::geometry::Point;
@@ -184,10 +183,6 @@ impl<'a> RawMesh<'a> {
         self.0.points[v as usize]
     }
     #[inline(always)]
-    pub fn points(self) -> &'a [Point] {
-        &self.0.points
-    }
-    #[inline(always)]
     pub fn triangle(self, t: u32) -> [u32; 3] {
         self.0.triangle(TriangleId::new(t)).map(VertexId::raw)
     }
@@ -196,25 +191,11 @@ impl<'a> RawMesh<'a> {
         self.0.triangle_count()
     }
     #[inline(always)]
-    pub fn edge_count(self) -> u32 {
-        self.0.edge_count()
-    }
-    #[inline(always)]
     pub fn segment_of(self, e: u32) -> u32 {
         self.0.segment_of(EdgeId::new(e))
     }
     #[inline(always)]
     pub fn is_segment(self, e: u32) -> bool {
         self.0.is_segment(EdgeId::new(e))
-    }
-    /// The tracked outgoing half-edge of `v`, or [`super::NONE`].
-    #[inline(always)]
-    pub fn vertex_edge(self, v: u32) -> u32 {
-        self.0.vertex_edge[v as usize]
-    }
-    pub fn find_edge(self, a: u32, b: u32) -> Option<u32> {
-        self.0
-            .find_edge(VertexId::new(a), VertexId::new(b))
-            .map(EdgeId::raw)
     }
 }

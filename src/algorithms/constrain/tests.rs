@@ -52,37 +52,41 @@ fn random_segments_are_recovered() {
             let a = (splitmix64(&mut s) % n as u64) as u32;
             let b = (splitmix64(&mut s) % n as u64) as u32;
             let id = cdt.new_segment_id(k % 3, VertexId::new(a), VertexId::new(b));
-            let m = cdt.mesh().raw();
-            let segments_before: Vec<(u32, u32)> = (0..m.edge_count())
-                .filter(|&e| m.is_segment(e))
-                .map(|e| (m.origin(e), m.dest(e)))
+            let (a, b) = (VertexId::new(a), VertexId::new(b));
+            let mesh = cdt.mesh();
+            let segments_before: Vec<(VertexId, VertexId)> = mesh
+                .edges()
+                .filter(|&e| mesh.is_segment(e))
+                .map(|e| (mesh.origin(e), mesh.dest(e)))
                 .collect();
-            cdt.insert_segment(VertexId::new(a), VertexId::new(b), id)
-                .unwrap();
-            let (mesh, m) = (cdt.mesh(), cdt.mesh().raw());
+            cdt.insert_segment(a, b, id).unwrap();
+            let mesh = cdt.mesh();
             mesh.check_topology()
                 .unwrap_or_else(|e| panic!("seed {seed}: {e}"));
+            let is_segment = |x, y| mesh.find_edge(x, y).is_some_and(|f| mesh.is_segment(f));
             for &(u, v) in &segments_before {
                 // A segment edge stays one, unless the new segment crossed it through a
                 // vertex `w` (in floating point): then it was replaced by u-w and w-v.
-                if let Some(e) = m.find_edge(u, v) {
-                    let through_vertex = (0..m.points().len() as u32).any(|w| {
-                        let is_segment = |x, y| m.find_edge(x, y).is_some_and(|f| m.is_segment(f));
-                        w != u && w != v && is_segment(u, w) && is_segment(w, v)
-                    });
+                if let Some(e) = mesh.find_edge(u, v) {
+                    let through_vertex = (0..mesh.vertex_count())
+                        .map(VertexId::new)
+                        .any(|w| w != u && w != v && is_segment(u, w) && is_segment(w, v));
                     assert!(
-                        m.is_segment(e) || through_vertex,
+                        mesh.is_segment(e) || through_vertex,
                         "seed {seed}: segment edge {u}-{v} lost its mark"
                     );
                 }
             }
-            if let Some(e) = m.find_edge(a, b) {
-                assert!(m.is_segment(e), "seed {seed}: segment {a}-{b} not marked");
+            if let Some(e) = mesh.find_edge(a, b) {
+                assert!(
+                    mesh.is_segment(e),
+                    "seed {seed}: segment {a}-{b} not marked"
+                );
             }
             assert_constrained_delaunay(mesh, seed);
-            for e in 0..m.edge_count() {
-                if m.origin(e) != GHOST.raw() && m.dest(e) != GHOST.raw() {
-                    assert_ne!(m.vertex_edge(m.origin(e)), NONE);
+            for e in mesh.edges() {
+                if mesh.origin(e) != GHOST && mesh.dest(e) != GHOST {
+                    assert!(mesh.vertex_edge(mesh.origin(e)).is_some());
                 }
             }
         }
@@ -122,12 +126,12 @@ fn star_polygon_in_random_orders() {
             cdt.insert_segment(VertexId::new(a), VertexId::new(b), id)
                 .unwrap();
             if k % 50 == 0 || k + 1 == n {
-                let m = cdt.mesh().raw();
-                cdt.mesh()
-                    .check_topology()
+                let m = cdt.mesh();
+                m.check_topology()
                     .unwrap_or_else(|e| panic!("seed {seed}: {e}"));
                 for &j in &order[..=k] {
-                    let e = m.find_edge(j, (j + 1) % n as u32).expect("polygon edge");
+                    let (u, v) = (VertexId::new(j), VertexId::new((j + 1) % n as u32));
+                    let e = m.find_edge(u, v).expect("polygon edge");
                     assert!(
                         m.is_segment(e),
                         "seed {seed}: polygon edge {j} not a segment after {k} insertions"
