@@ -52,6 +52,32 @@ fn exponent(x: f64) -> i32 {
 }
 
 /// The exponent of the lowest set bit of a finite non-zero `x`.
+/// A cheap sufficient test that no scaling is needed: from the largest and the smallest nonzero
+/// magnitude alone (finite doubles of one sign order as their bit patterns do: one pass of
+/// integer minima and maxima, which vectorizes). A coordinate's lowest bit is at least its
+/// exponent − 52, so the smallest magnitude bounds every lowest bit from below; when that bound
+/// and the largest exponent are within the limits, so are the exact values [`Scaling::for_points`]
+/// would compute, and it would return no scaling.
+fn within_bounds_by_magnitudes(points: &[Point]) -> bool {
+    const MAGNITUDE: u64 = !(1 << 63);
+    let (mut largest, mut smallest) = (0u64, u64::MAX);
+    for &x in points.as_flattened() {
+        let bits = x.to_bits() & MAGNITUDE;
+        largest = largest.max(bits);
+        // Less one, a zero wraps to the largest pattern and leaves the minimum alone.
+        smallest = smallest.min(bits.wrapping_sub(1));
+    }
+    if largest == 0 {
+        return false; // all zero: the exact pass says so
+    }
+    let smallest = smallest.wrapping_add(1);
+    let (hi, lo) = (
+        exponent(f64::from_bits(largest)),
+        exponent(f64::from_bits(smallest)) - 52,
+    );
+    hi <= LARGEST_SCALED_EXPONENT && lo >= FINEST_SCALED_BIT && hi - lo <= LARGEST_BIT_SPAN
+}
+
 fn lowest_bit(x: f64) -> i32 {
     let bits = x.to_bits();
     let biased = ((bits >> 52) & 0x7ff) as i32;
@@ -109,6 +135,9 @@ pub struct Scaling {
 impl Scaling {
     /// The scaling for the points (x, y pairs), or the error that no scaling makes them safe.
     pub fn for_points(points: &[Point]) -> Result<Scaling, Error> {
+        if within_bounds_by_magnitudes(points) {
+            return Ok(Scaling::default());
+        }
         // The largest magnitude's exponent and the finest bit, in one pass without branches on
         // the data (a zero has no bits: it leaves both alone).
         let (mut hi, mut lo) = (i32::MIN, i32::MAX);

@@ -174,11 +174,11 @@ impl<P: Predicates> Builder<P> {
                 return Location::Outside(u);
             }
             let q2 = self.point(x);
-            self.rng ^= self.rng << 13;
-            self.rng ^= self.rng >> 17;
-            self.rng ^= self.rng << 5;
+            // A linear congruential step (Numerical Recipes' constants); its top bit is the coin
+            // (the low bits of such a generator have short periods, the top one does not).
+            self.rng = self.rng.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
             // Edge e1 runs q1 → q2, e2 runs q2 → q0.
-            let (o1, o2) = if self.rng & 1 == 0 {
+            let (o1, o2) = if self.rng >> 31 == 0 {
                 let o1 = P::orient2d(q1, q2, p);
                 if o1 < 0.0 {
                     (f, q0) = (self.twin(e1), q2);
