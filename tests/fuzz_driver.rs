@@ -94,3 +94,22 @@ fn switch_parser() {
     });
     assert!(ran > 100, "only {ran} cases ran");
 }
+
+/// Case 2 080 084 of seed 0xf0220001 (`Qa0.474q33pDceS20000`): concentric shells near a vertex
+/// where a hull segment (`c`) leaves at 56° from an input segment put vertices of both within
+/// the chain check's tolerance of either line; the chain is followed with backtracking.
+#[test]
+fn chains_near_a_vertex_at_the_scale_of_the_smallest_shells() {
+    cases::triangulate(
+        &[
+            230, 129, 180, 52, 35, 107, 91, 133, 234, 27, 31, 139, 83, 236, 87, 65, 124, 36, 82,
+            208, 109, 228, 217, 123, 164, 55, 91, 63, 126, 139, 160, 115, 162, 126, 210, 97, 141,
+            36, 170, 125, 2, 124, 60, 116, 175, 158, 45, 33, 229, 103, 192, 215, 14, 150, 33, 241,
+            33, 138, 181, 174, 14, 43, 46, 60, 227, 152, 104, 181, 52, 235, 230, 117, 22, 68, 22,
+            114, 137, 84, 6, 103, 95, 242, 159, 240, 235, 158, 234, 247, 80, 68, 195, 211, 30, 161,
+            161, 33, 46, 54, 183, 216, 103, 157, 61, 230, 109, 134, 23, 119, 183, 14, 36, 167, 197,
+            3, 28, 134, 80, 168, 154, 146, 76,
+        ],
+        false,
+    );
+}

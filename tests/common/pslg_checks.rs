@@ -317,29 +317,58 @@ pub fn segment_chains(
         let end = mesh
             .vertex_at(pb)
             .ok_or_else(|| what("its second endpoint is not an output vertex".into()))?;
-        let mut chain = vec![start];
-        let mut current = start;
-        while current != end {
+        // The chain by depth-first search, closest to the line first: near an endpoint, at the
+        // scale of refinement's smallest shells, another segment leaving the same vertex lies
+        // within the tolerance of this one's line too, and a greedy walk may take it.
+        let off_line = |p: Point| ((p[0] - pa[0]) * d[1] - (p[1] - pa[1]) * d[0]).abs();
+        let steps_from = |current: usize| -> Vec<usize> {
             let t = param(mesh.points[current]);
-            let next = adjacent
+            let mut steps: Vec<usize> = adjacent
                 .get(&current)
                 .into_iter()
                 .flatten()
                 .copied()
                 .filter(|&w| param(mesh.points[w]) > t && on_line(mesh.points[w]))
-                .min_by(|&x, &y| param(mesh.points[x]).total_cmp(&param(mesh.points[y])))
-                .ok_or_else(|| {
-                    what(format!(
-                        "no output segment continues its chain {chain:?} at {:?}",
-                        mesh.points[current]
-                    ))
-                })?;
-            if param(mesh.points[next]) > 1.0 {
-                return Err(what(format!("its chain {chain:?} overshoots the endpoint")));
+                .collect();
+            // Popped from the back: the farthest from the line first in the list.
+            steps.sort_by(|&x, &y| {
+                let (px, py) = (mesh.points[x], mesh.points[y]);
+                off_line(py)
+                    .total_cmp(&off_line(px))
+                    .then(param(py).total_cmp(&param(px)))
+            });
+            steps
+        };
+        let mut path: Vec<(usize, Vec<usize>)> = vec![(start, steps_from(start))];
+        let mut longest: Vec<usize> = vec![start];
+        let mut overshot = false;
+        let chain: Vec<usize> = loop {
+            let Some((current, steps)) = path.last_mut() else {
+                return Err(what(if overshot {
+                    format!("its chain {longest:?} overshoots the endpoint")
+                } else {
+                    format!(
+                        "no output segment continues its chain {longest:?} at {:?}",
+                        mesh.points[*longest.last().expect("starts with a vertex")]
+                    )
+                }));
+            };
+            if *current == end {
+                break path.iter().map(|(v, _)| *v).collect();
             }
-            chain.push(next);
-            current = next;
-        }
+            match steps.pop() {
+                Some(next) if param(mesh.points[next]) > 1.0 => overshot = true,
+                Some(next) => {
+                    path.push((next, steps_from(next)));
+                    if path.len() > longest.len() {
+                        longest = path.iter().map(|(v, _)| *v).collect();
+                    }
+                }
+                None => {
+                    path.pop();
+                }
+            }
+        };
         // Input vertices lying on the segment split it, unless the chain bends around them at
         // a new vertex (a rounded crossing: Triangle inserts the rest of the segment from there;
         // ours does not, which `bypasses_a_vertex` checks).
