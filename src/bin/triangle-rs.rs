@@ -415,10 +415,6 @@ fn run(args: &[String]) -> Result<(), Failure> {
     if !quiet {
         print_statistics(&options, &input, &mesh);
     }
-    // The process ends: unmapping the large arrays one by one would only cost time.
-    drop(planned);
-    std::mem::forget((mesh, voronoi));
-    std::mem::forget(inputs);
     Ok(())
 }
 
