@@ -64,6 +64,15 @@ pub fn refine<P: Predicates>(
         settings,
         Polling::new(quality),
     );
+    let mut refinement = refinement;
+    if quality.area_lattice && quality.user_test.is_none() && quality.max_steiner.is_none() {
+        super::lattice::seed_lattices(
+            &mut refinement,
+            domain,
+            quality.max_area,
+            quality.variable_area,
+        );
+    }
     let mut driver = Driver {
         refinement,
         domain,

@@ -27,6 +27,7 @@ use crate::mesh::{Mesh, TriangleId, VertexId, OUTSIDE};
 mod attributes; // `Attributes`: the interpolated attributes of new vertices
 mod driver; // `refine`: strategy above the guaranteed angle, budgets, runaway limit, polling, report
 mod encroachment; // `Encroachment`, `Cavity`: encroached subsegments, where subsegments are split
+mod lattice; // `seed_lattices`: lattice points where a fixed area bound governs
 mod queue; // `BadQueue`: the bad-triangle queue
 mod refinement; // `Refinement`: the loop, splitting segments and triangles, the mesh's bookkeeping
 mod report; // `Report`, `Warning`
@@ -55,6 +56,10 @@ pub struct Quality<'a> {
     pub no_steiner_on_segments: u8,
     /// `S`: the Steiner-point budget.
     pub max_steiner: Option<u64>,
+    /// Whether the interior may first be seeded with lattice points where a fixed area bound
+    /// governs (global or regional `a`; not for per-triangle bounds of a mesh given with `r`,
+    /// and never with the user's test or an `S` budget).
+    pub area_lattice: bool,
     /// Polled now and then; `true` stops refinement with a valid mesh.
     pub cancel: Option<&'a (dyn Fn() -> bool + Sync + 'a)>,
     /// Told of the work done and waiting where `cancel` is polled.

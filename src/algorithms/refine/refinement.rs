@@ -64,6 +64,15 @@ struct Encroached {
     forced: bool,
 }
 
+/// How the insertion of a lattice point went ([`Refinement::insert_seed`]).
+pub(super) enum Seeded {
+    Inserted(VertexId),
+    /// Not inserted: not found in a domain triangle of its tag, or too close to a vertex.
+    Skipped,
+    /// The caller cancelled: refinement stops.
+    Stop,
+}
+
 /// A refinement's state kept aside, to be exchanged with the live one
 /// ([`Refinement::exchange`]).
 pub(super) struct Aside<P: Predicates> {
@@ -469,6 +478,60 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
         self.kinds.push(kind);
         self.tally.steiner_points += 1;
         vertex
+    }
+
+    /// Inserts a free vertex at `p` (a lattice point, see [`super::lattice`]) if it lies inside
+    /// a domain triangle of tag `tag` (or on an edge between two that is not a segment): located
+    /// by a walk from a triangle at the first of the vertices `near` from which the walk stays in
+    /// the triangulation (a concavity of the boundary may stop one), else from triangle `start`.
+    /// Nothing is queued: refinement checks every triangle and subsegment when it starts.
+    pub(super) fn insert_seed(
+        &mut self,
+        p: Point,
+        near: &[VertexId],
+        start: TriangleId,
+        tag: u32,
+    ) -> Seeded {
+        if self.should_stop() {
+            return Seeded::Stop;
+        }
+        for k in 0..=near.len() {
+            let from = match near.get(k) {
+                Some(&v) => match self.mesh().vertex_edge(v) {
+                    Some(e) => e.triangle(),
+                    None => continue,
+                },
+                None => start,
+            };
+            let location = self.cdt.locate(p, from);
+            let mesh = self.mesh();
+            let t = match location {
+                Location::Outside(_) => continue,
+                Location::OnVertex(_) => return Seeded::Skipped,
+                Location::InTriangle(t) => t,
+                Location::OnEdge(e) => {
+                    if mesh.is_segment(e) || mesh.tag(mesh.twin(e).triangle()) != tag {
+                        return Seeded::Skipped;
+                    }
+                    e.triangle()
+                }
+            };
+            if mesh.tag(t) != tag || mesh.is_ghost(t) || self.too_close(p, location) {
+                return Seeded::Skipped;
+            }
+            let corners = mesh.triangle(t);
+            let [a, b, c] = corners.map(|v| mesh.point(v));
+            // Frame coordinates of p in the triangle, for its attributes.
+            let det = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+            let (dx, dy) = (p[0] - a[0], p[1] - a[1]);
+            let xi = (dx * (c[1] - a[1]) - dy * (c[0] - a[0])) / det;
+            let eta = ((b[0] - a[0]) * dy - (b[1] - a[1]) * dx) / det;
+            let vertex = self.new_vertex(p, VertexKind::Free);
+            self.attributes.push_in_triangle(corners, xi, eta);
+            let _ = self.cdt.insert_at(vertex, location);
+            return Seeded::Inserted(vertex);
+        }
+        Seeded::Skipped
     }
 
     /// Queues what a new vertex may have spoiled: bad triangles around it, encroached segments.
