@@ -65,12 +65,17 @@ pub fn refine<P: Predicates>(
         Polling::new(quality),
     );
     let mut refinement = refinement;
-    if quality.area_lattice && quality.user_test.is_none() && quality.max_steiner.is_none() {
+    // Not with the user's test or an `S` budget (there is no runaway limit then); within the
+    // runaway limit (an area bound asking for billions of triangles is stopped as a runaway).
+    if let (true, Some(limit)) = (quality.area_lattice, runaway_limit) {
         super::lattice::seed_lattices(
             &mut refinement,
             domain,
             quality.max_area,
             quality.variable_area,
+            limit,
+            quality.min_angle,
+            quality.no_steiner_on_segments,
         );
     }
     let mut driver = Driver {

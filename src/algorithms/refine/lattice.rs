@@ -53,17 +53,32 @@ const COARSEST_POINTS_ACROSS: usize = 8;
 /// this many.
 const SPARSE_FACTOR: f64 = 8.0;
 const MAX_LATTICES: usize = 16;
-/// Nor for fewer points than this: nothing to gain.
+/// Nor above this angle bound (degrees): a point that refinement puts into a lattice triangle
+/// (at its centre, say) makes triangles of 30°, 30° and 120°, bad above 30°, whose splitting makes
+/// more of them: refinement then cascades through the lattice (measured: 1.7 to 1.9 times
+/// Triangle's triangles at 31° to 33° on `A.poly`, where 30.5° and below give 0.7 times).
+const MAX_ANGLE: f64 = 30.0;
+/// Nor for fewer points than this: nothing to gain; nor for more than this (2^26: a mesh of 10^8
+/// triangles, gigabytes; an area bound asking for 10^10 triangles is refined, and cancelled or
+/// stopped as a runaway, the classical way, its lattice's arrays alone would not fit).
 const MIN_POINTS: f64 = 64.0;
+const MAX_POINTS: f64 = (1u64 << 26) as f64;
 
 /// Seeds the lattices of every fixed area bound of the domain (see the module's text). `global`:
-/// the `a<x>` bound; `variable_area`: regional bounds apply (`domain.max_area` per tag).
+/// the `a<x>` bound; `variable_area`: regional bounds apply (`domain.max_area` per tag);
+/// `budget`: no more points than this in all (the runaway limit: no lattice is laid beyond).
 pub(super) fn seed_lattices<P: Predicates>(
     refinement: &mut Refinement<'_, '_, P>,
     domain: &Domain,
     global: Option<f64>,
     variable_area: bool,
+    budget: u64,
+    min_angle: Option<f64>,
+    no_steiner_on_segments: u8,
 ) {
+    if min_angle.is_some_and(|angle| angle > MAX_ANGLE) {
+        return;
+    }
     let bound_of = |tag: u32| {
         let regional = if variable_area {
             domain
@@ -102,10 +117,18 @@ pub(super) fn seed_lattices<P: Predicates>(
     if bounds.len() > MAX_LATTICES {
         return;
     }
+    let mut budget = budget as f64;
     for (bound, tags) in bounds {
-        let Some(mut lattice) = Lattice::lay(refinement.mesh(), bound, &tags) else {
+        let Some(mut lattice) = Lattice::lay(
+            refinement.mesh(),
+            bound,
+            &tags,
+            budget,
+            no_steiner_on_segments,
+        ) else {
             continue;
         };
+        budget -= lattice.needed;
         if lattice.seed(refinement) {
             return; // stopped (cancelled)
         }
@@ -127,12 +150,21 @@ struct Lattice {
     vertex: Vec<VertexId>,
     /// A triangle of the tags: where the first walk starts.
     start: TriangleId,
+    /// About how many points the domain of the tags takes.
+    needed: f64,
 }
 
 impl Lattice {
     /// The lattice for area bound `bound` over the triangles of `tags`, with the points to seed
-    /// marked; `None` when it is not worth laying.
-    fn lay(mesh: &Mesh, bound: f64, tags: &[u32]) -> Option<Lattice> {
+    /// marked; `None` when it is not worth laying, or would take more than `budget` points.
+    /// `no_steiner_on_segments`: `Y` (1) or `YY` (2), which keep segments whole.
+    fn lay(
+        mesh: &Mesh,
+        bound: f64,
+        tags: &[u32],
+        budget: f64,
+        no_steiner_on_segments: u8,
+    ) -> Option<Lattice> {
         let spacing = (4.0 * AREA_FRACTION * bound / 3f64.sqrt()).sqrt();
         let height = spacing * 3f64.sqrt() / 2.0;
         let in_group = |t| {
@@ -154,7 +186,7 @@ impl Lattice {
             }
         }
         let needed = area / (AREA_FRACTION * bound) / 2.0;
-        if !(needed >= MIN_POINTS) {
+        if !(needed >= MIN_POINTS && needed <= budget.min(MAX_POINTS)) {
             return None;
         }
         let columns = ((hi[0] - lo[0]) / spacing).ceil() + 2.0;
@@ -172,6 +204,7 @@ impl Lattice {
             tag: vec![OUTSIDE; columns * rows],
             vertex: vec![VertexId::NONE; columns * rows],
             start,
+            needed,
         };
         for t in mesh.triangles().filter(|&t| in_group(t)) {
             let corners = mesh.triangle(t).map(|v| mesh.point(v));
@@ -195,6 +228,20 @@ impl Lattice {
                     [a[0] - n[0], a[1] - n[1]],
                 ];
                 lattice.rasterize(&band, |slot| *slot = OUTSIDE);
+            }
+            // A segment that `Y`/`YY` keep whole cannot be split when a lattice point encroaches
+            // it: no lattice point in its diametral circle, refinement meshes around it as
+            // without a lattice (else the triangles between the points and the segment stay
+            // skinny).
+            let in_domain = |t| mesh.tag(t) != OUTSIDE && !mesh.is_ghost(t);
+            let kept_whole = match no_steiner_on_segments {
+                0 => false,
+                1 => !(in_domain(e.triangle()) && in_domain(mesh.twin(e).triangle())),
+                _ => true,
+            };
+            if kept_whole {
+                let middle = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
+                lattice.rasterize_disc(middle, 0.5 * length + margin);
             }
         }
         for &p in mesh.points() {
