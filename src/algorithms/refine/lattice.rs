@@ -95,41 +95,41 @@ pub(super) fn seed_lattices<P: Predicates>(
         }
         .filter(|b| b.is_finite() && *b > 0.0)
     };
-    // The distinct bounds and their tags.
+    // The distinct bounds, and per tag which one applies (a mesh given with `r` has a tag per
+    // triangle: one lattice for them all under a global bound).
     let mesh = refinement.mesh();
-    let mut bounds: Vec<(f64, Vec<u32>)> = Vec::new();
-    let mut seen_tags: Vec<u32> = Vec::new();
-    for t in mesh.triangles() {
-        let tag = mesh.tag(t);
-        if tag == OUTSIDE || mesh.is_ghost(t) || seen_tags.contains(&tag) {
+    let tag_count = mesh.tags().iter().max().map_or(0, |&t| t as usize + 1);
+    let mut bounds: Vec<f64> = Vec::new();
+    let mut lattice_of_tag: Vec<Option<usize>> = vec![None; tag_count];
+    for (tag, lattice) in lattice_of_tag.iter_mut().enumerate().skip(1) {
+        let Some(bound) = bound_of(tag as u32) else {
             continue;
-        }
-        seen_tags.push(tag);
-        if seen_tags.len() > 4 * MAX_LATTICES {
-            return; // many tags (a mesh given with `r`): regions too small to gain anything
-        }
-        let Some(bound) = bound_of(tag) else { continue };
-        match bounds.iter_mut().find(|(b, _)| *b == bound) {
-            Some((_, tags)) => tags.push(tag),
-            None => bounds.push((bound, vec![tag])),
-        }
-    }
-    if bounds.len() > MAX_LATTICES {
-        return;
+        };
+        *lattice = Some(match bounds.iter().position(|&b| b == bound) {
+            Some(i) => i,
+            None => {
+                bounds.push(bound);
+                if bounds.len() > MAX_LATTICES {
+                    return; // many regions with bounds of their own: few points in each
+                }
+                bounds.len() - 1
+            }
+        });
     }
     let mut budget = budget as f64;
-    for (bound, tags) in bounds {
+    for (i, &bound) in bounds.iter().enumerate() {
+        let members: Vec<bool> = lattice_of_tag.iter().map(|&l| l == Some(i)).collect();
         let Some(mut lattice) = Lattice::lay(
             refinement.mesh(),
             bound,
-            &tags,
+            &members,
             budget,
             no_steiner_on_segments,
         ) else {
             continue;
         };
         budget -= lattice.needed;
-        if lattice.seed(refinement) {
+        if lattice.seed(refinement, &members) {
             return; // stopped (cancelled)
         }
     }
@@ -144,8 +144,9 @@ struct Lattice {
     height: f64,
     columns: usize,
     rows: usize,
-    /// Per point: the tag of the domain triangle it lies in, [`OUTSIDE`] where it is not seeded.
-    tag: Vec<u32>,
+    /// Per point: whether it is to be seeded (it lies in a domain triangle of the lattice's tags,
+    /// away from segments and vertices).
+    seeded: Vec<bool>,
     /// Per point: its vertex once inserted.
     vertex: Vec<VertexId>,
     /// A triangle of the tags: where the first walk starts.
@@ -155,22 +156,20 @@ struct Lattice {
 }
 
 impl Lattice {
-    /// The lattice for area bound `bound` over the triangles of `tags`, with the points to seed
+    /// The lattice for area bound `bound` over the triangles of the tags that are `members`, with
+    /// the points to seed
     /// marked; `None` when it is not worth laying, or would take more than `budget` points.
     /// `no_steiner_on_segments`: `Y` (1) or `YY` (2), which keep segments whole.
     fn lay(
         mesh: &Mesh,
         bound: f64,
-        tags: &[u32],
+        members: &[bool],
         budget: f64,
         no_steiner_on_segments: u8,
     ) -> Option<Lattice> {
         let spacing = (4.0 * AREA_FRACTION * bound / 3f64.sqrt()).sqrt();
         let height = spacing * 3f64.sqrt() / 2.0;
-        let in_group = |t| {
-            let tag = mesh.tag(t);
-            tag != OUTSIDE && !mesh.is_ghost(t) && tags.contains(&tag)
-        };
+        let in_group = |t| !mesh.is_ghost(t) && members[mesh.tag(t) as usize];
         let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
         let mut area = 0.0;
         let mut start = TriangleId::NONE;
@@ -201,15 +200,14 @@ impl Lattice {
             height,
             columns,
             rows,
-            tag: vec![OUTSIDE; columns * rows],
+            seeded: vec![false; columns * rows],
             vertex: vec![VertexId::NONE; columns * rows],
             start,
             needed,
         };
         for t in mesh.triangles().filter(|&t| in_group(t)) {
             let corners = mesh.triangle(t).map(|v| mesh.point(v));
-            let tag = mesh.tag(t);
-            lattice.rasterize(&corners, |slot| *slot = tag);
+            lattice.rasterize(&corners, true);
         }
         // Away from segments (their capsules) and vertices (their discs).
         let margin = MARGIN * spacing;
@@ -227,7 +225,7 @@ impl Lattice {
                     [b[0] - n[0], b[1] - n[1]],
                     [a[0] - n[0], a[1] - n[1]],
                 ];
-                lattice.rasterize(&band, |slot| *slot = OUTSIDE);
+                lattice.rasterize(&band, false);
             }
             // A segment that `Y`/`YY` keep whole cannot be split when a lattice point encroaches
             // it: no lattice point in its diametral circle, refinement meshes around it as
@@ -295,9 +293,9 @@ impl Lattice {
         }
     }
 
-    /// Applies `mark` to the tag of every lattice point in convex polygon `polygon` (closed; in
-    /// floating point, which only the points within rounding of its edges notice).
-    fn rasterize(&mut self, polygon: &[Point], mut mark: impl FnMut(&mut u32)) {
+    /// Marks every lattice point in convex polygon `polygon` (closed; in floating point, which
+    /// only the points within rounding of its edges notice) to be `seeded` or not.
+    fn rasterize(&mut self, polygon: &[Point], seeded: bool) {
         let low = polygon.iter().map(|p| p[1]).fold(f64::MAX, f64::min);
         let high = polygon.iter().map(|p| p[1]).fold(f64::MIN, f64::max);
         for j in self.rows_between(low, high) {
@@ -320,7 +318,7 @@ impl Lattice {
                 }
             }
             for c in self.columns_between(j, left, right) {
-                mark(&mut self.tag[j * self.columns + c]);
+                self.seeded[j * self.columns + c] = seeded;
             }
         }
     }
@@ -331,7 +329,7 @@ impl Lattice {
             let dy = self.origin[1] + j as f64 * self.height - p[1];
             let half = (radius * radius - dy * dy).max(0.0).sqrt();
             for c in self.columns_between(j, p[0] - half, p[0] + half) {
-                self.tag[j * self.columns + c] = OUTSIDE;
+                self.seeded[j * self.columns + c] = false;
             }
         }
     }
@@ -343,8 +341,13 @@ impl Lattice {
             .then(|| j as usize * self.columns + c as usize)
     }
 
-    /// Inserts the marked points, coarse to fine; returns whether refinement is to stop.
-    fn seed<P: Predicates>(&mut self, refinement: &mut Refinement<'_, '_, P>) -> bool {
+    /// Inserts the marked points, coarse to fine, each if it lies in a triangle of a tag that is
+    /// one of the `members`; returns whether refinement is to stop.
+    fn seed<P: Predicates>(
+        &mut self,
+        refinement: &mut Refinement<'_, '_, P>,
+        members: &[bool],
+    ) -> bool {
         let across = self.columns.min(self.rows) / COARSEST_POINTS_ACROSS;
         let coarsest = (usize::BITS - across.max(1).leading_zeros() - 1).min(12);
         let mut last = VertexId::NONE;
@@ -356,10 +359,9 @@ impl Lattice {
                 let first = (j.div_euclid(2)).rem_euclid(step) as usize;
                 for c in (first..self.columns).step_by(step as usize) {
                     let slot = j as usize * self.columns + c;
-                    let tag = self.tag[slot];
                     let i = c as i64 - j.div_euclid(2);
                     let coarser = (i % (2 * step) == 0 && j % (2 * step) == 0) && level < coarsest;
-                    if tag == OUTSIDE || coarser {
+                    if !self.seeded[slot] || coarser {
                         continue;
                     }
                     // Lattice neighbours at this level's spacing already in the mesh.
@@ -374,8 +376,12 @@ impl Lattice {
                     if last != VertexId::NONE {
                         near.push(last);
                     }
-                    match refinement.insert_seed(self.point(c, j as usize), &near, self.start, tag)
-                    {
+                    match refinement.insert_seed(
+                        self.point(c, j as usize),
+                        &near,
+                        self.start,
+                        members,
+                    ) {
                         Seeded::Inserted(v) => {
                             self.vertex[slot] = v;
                             last = v;

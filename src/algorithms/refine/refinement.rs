@@ -481,7 +481,8 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
     }
 
     /// Inserts a free vertex at `p` (a lattice point, see [`super::lattice`]) if it lies inside
-    /// a domain triangle of tag `tag` (or on an edge between two that is not a segment): located
+    /// a domain triangle whose tag is one of the `members` (or on an edge between two that is not
+    /// a segment): located
     /// by a walk from a triangle at the first of the vertices `near` from which the walk stays in
     /// the triangulation (a concavity of the boundary may stop one), else from triangle `start`.
     /// Nothing is queued: refinement checks every triangle and subsegment when it starts.
@@ -490,7 +491,7 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
         p: Point,
         near: &[VertexId],
         start: TriangleId,
-        tag: u32,
+        members: &[bool],
     ) -> Seeded {
         if self.should_stop() {
             return Seeded::Stop;
@@ -510,13 +511,17 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
                 Location::OnVertex(_) => return Seeded::Skipped,
                 Location::InTriangle(t) => t,
                 Location::OnEdge(e) => {
-                    if mesh.is_segment(e) || mesh.tag(mesh.twin(e).triangle()) != tag {
+                    let twin = mesh.twin(e).triangle();
+                    if mesh.is_segment(e)
+                        || mesh.is_ghost(twin)
+                        || !members[mesh.tag(twin) as usize]
+                    {
                         return Seeded::Skipped;
                     }
                     e.triangle()
                 }
             };
-            if mesh.tag(t) != tag || mesh.is_ghost(t) || self.too_close(p, location) {
+            if mesh.is_ghost(t) || !members[mesh.tag(t) as usize] || self.too_close(p, location) {
                 return Seeded::Skipped;
             }
             let corners = mesh.triangle(t);
