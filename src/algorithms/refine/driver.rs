@@ -64,20 +64,6 @@ pub fn refine<P: Predicates>(
         settings,
         Polling::new(quality),
     );
-    let mut refinement = refinement;
-    // Not with the user's test or an `S` budget (there is no runaway limit then); within the
-    // runaway limit (an area bound asking for billions of triangles is stopped as a runaway).
-    if let (true, Some(limit)) = (quality.area_lattice, runaway_limit) {
-        super::lattice::seed_lattices(
-            &mut refinement,
-            domain,
-            quality.max_area,
-            quality.variable_area,
-            limit,
-            quality.min_angle,
-            quality.no_steiner_on_segments,
-        );
-    }
     let mut driver = Driver {
         refinement,
         domain,
@@ -87,7 +73,10 @@ pub fn refine<P: Predicates>(
     };
     let outcome = match quality.min_angle {
         Some(angle) if angle > GUARANTEED_ANGLE => driver.refine_beyond_the_guarantee(angle),
-        _ => driver.run_within(None),
+        _ => {
+            driver.seed();
+            driver.run_within(None)
+        }
     };
     let tally = driver.refinement.tally();
     let mut warnings = driver.warnings;
@@ -187,9 +176,12 @@ impl<P: Predicates> Driver<'_, '_, P> {
     fn refine_beyond_the_guarantee(&mut self, angle: f64) -> Outcome {
         let mut aside = self.refinement.copy_aside(); // the unrefined state
         self.refinement.set_angle(angle);
+        // The budget of the unrefined mesh; lattice points (which replace points the area bounds
+        // would have asked for) do not count against it.
         let budget = STRAIGHT_BUDGET_PER_TRIANGLE * self.inside_triangle_count()
             + self.size_estimate()
             + 1024;
+        self.seed();
         let outcome = self.run_within(Some(self.steiner_points() + budget));
         if outcome != Outcome::RunBudget {
             return outcome;
@@ -197,6 +189,7 @@ impl<P: Predicates> Driver<'_, '_, P> {
         // Live: the unrefined state, refined to 28.6°; aside: the straight run's.
         self.refinement.exchange(&mut aside);
         self.refinement.set_angle(GUARANTEED_ANGLE);
+        self.seed();
         let outcome = self.run_within(None);
         if outcome != Outcome::Finished {
             return outcome; // cancelled, or stopped by `S` or as a runaway
@@ -230,6 +223,25 @@ impl<P: Predicates> Driver<'_, '_, P> {
             steiner_points: self.steiner_points(),
         });
         outcome
+    }
+
+    /// Seeds the unrefined domain with lattice points where a fixed area bound governs
+    /// ([`super::lattice`]): not with the user's test or an `S` budget (there is no runaway limit
+    /// then), and within the runaway limit (an area bound asking for billions of triangles is
+    /// stopped as a runaway). Before the copy of the unrefined state above 28.6° (which then
+    /// stays small), and again on that state when it is refined at 28.6°.
+    fn seed(&mut self) {
+        if let (true, Some(limit)) = (self.quality.area_lattice, self.runaway_limit) {
+            super::lattice::seed_lattices(
+                &mut self.refinement,
+                self.domain,
+                self.quality.max_area,
+                self.quality.variable_area,
+                limit,
+                self.quality.min_angle,
+                self.quality.no_steiner_on_segments,
+            );
+        }
     }
 
     fn steiner_points(&self) -> u64 {

@@ -32,12 +32,14 @@ use crate::algorithms::domain::Domain;
 use crate::geometry::{Point, Predicates};
 use crate::mesh::{Mesh, TriangleId, VertexId, OUTSIDE};
 
-/// The lattice's triangles have this fraction of the area bound: just under it, so that rounding
-/// never makes one too big.
-const AREA_FRACTION: f64 = 0.95;
+/// The lattice's triangles have this fraction of the area bound: just under it, so that neither
+/// the jitter (below 0.5% of a triangle's area) nor rounding makes one too big. (Measured on the
+/// refinement benchmark: 0.9, 0.95, 0.98 give 0.71, 0.67, 0.65 times Triangle's triangles.)
+const AREA_FRACTION: f64 = 0.98;
 /// Lattice points keep at least this many lattice spacings from every segment and vertex. Closer,
 /// the boundary band's refinement makes more (smaller) triangles around the points; farther, it
-/// fills a wider band one circumcentre at a time.
+/// fills a wider band one circumcentre at a time. (Measured on the refinement benchmark: 0.5 to 2
+/// spacings change its instructions by 1% and its triangles by 0.8%.)
 const MARGIN: f64 = 1.0;
 /// Each point is moved off the exact lattice by up to this fraction of the spacing (a hash of its
 /// coordinates): the exact lattice and its coarse-to-fine subsets are full of cocircular points
@@ -376,8 +378,31 @@ impl Lattice {
                     if last != VertexId::NONE {
                         near.push(last);
                     }
+                    // Below the coarsest level the point is the midpoint of two points of the
+                    // next coarser level; when both are in the mesh and joined by an edge, the
+                    // point lies beside it (the walk from there takes a step or two).
+                    let hint = (level < coarsest)
+                        .then(|| {
+                            let (di, dj) = if j % (2 * step) == 0 {
+                                (1, 0)
+                            } else if i % (2 * step) == 0 {
+                                (0, 1)
+                            } else {
+                                (1, -1)
+                            };
+                            let parent = |sign: i64| {
+                                self.slot(i + sign * di * step, j + sign * dj * step)
+                                    .map(|n| self.vertex[n])
+                                    .filter(|&v| v != VertexId::NONE)
+                            };
+                            let mesh = refinement.mesh();
+                            mesh.find_edge(parent(-1)?, parent(1)?)
+                                .map(|e| e.triangle())
+                        })
+                        .flatten();
                     match refinement.insert_seed(
                         self.point(c, j as usize),
+                        hint,
                         &near,
                         self.start,
                         members,

@@ -482,13 +482,14 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
 
     /// Inserts a free vertex at `p` (a lattice point, see [`super::lattice`]) if it lies inside
     /// a domain triangle whose tag is one of the `members` (or on an edge between two that is not
-    /// a segment): located
-    /// by a walk from a triangle at the first of the vertices `near` from which the walk stays in
-    /// the triangulation (a concavity of the boundary may stop one), else from triangle `start`.
+    /// a segment): located by a walk from triangle `hint` if given, else from a triangle at the
+    /// first of the vertices `near` from which the walk stays in the triangulation (a concavity
+    /// of the boundary may stop one), else from triangle `start`.
     /// Nothing is queued: refinement checks every triangle and subsegment when it starts.
     pub(super) fn insert_seed(
         &mut self,
         p: Point,
+        hint: Option<TriangleId>,
         near: &[VertexId],
         start: TriangleId,
         members: &[bool],
@@ -496,13 +497,19 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
         if self.should_stop() {
             return Seeded::Stop;
         }
-        for k in 0..=near.len() {
-            let from = match near.get(k) {
-                Some(&v) => match self.mesh().vertex_edge(v) {
-                    Some(e) => e.triangle(),
-                    None => continue,
-                },
-                None => start,
+        let tries = usize::from(hint.is_some()) + near.len() + 1;
+        for k in 0..tries {
+            let k = if hint.is_some() { k } else { k + 1 };
+            let from = if k == 0 {
+                hint.unwrap_or(start)
+            } else {
+                match near.get(k - 1) {
+                    Some(&v) => match self.mesh().vertex_edge(v) {
+                        Some(e) => e.triangle(),
+                        None => continue,
+                    },
+                    None => start,
+                }
             };
             let location = self.cdt.locate(p, from);
             let mesh = self.mesh();
