@@ -48,7 +48,7 @@ const MARGIN: f64 = 1.0;
 /// point, and the triangles stay within a tenth of a degree of 60° and of their area.
 const JITTER: f64 = 1.0 / 1024.0;
 /// The coarsest level has lattice coordinates multiples of 2^k with about this many points across
-/// the lattice's shorter side.
+/// the lattice's longer side.
 const COARSEST_POINTS_ACROSS: usize = 8;
 /// A lattice is not laid when its bounding box holds more than this many times the points its
 /// domain needs (a thin domain across a large box), nor when there are more distinct bounds than
@@ -171,7 +171,7 @@ impl Lattice {
     ) -> Option<Lattice> {
         let spacing = (4.0 * AREA_FRACTION * bound / 3f64.sqrt()).sqrt();
         let height = spacing * 3f64.sqrt() / 2.0;
-        let in_group = |t| !mesh.is_ghost(t) && members[mesh.tag(t) as usize];
+        let in_group = |t| !mesh.is_ghost(t) && members.get(mesh.tag(t) as usize) == Some(&true);
         let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
         let mut area = 0.0;
         let mut start = TriangleId::NONE;
@@ -350,7 +350,10 @@ impl Lattice {
         refinement: &mut Refinement<'_, '_, P>,
         members: &[bool],
     ) -> bool {
-        let across = self.columns.min(self.rows) / COARSEST_POINTS_ACROSS;
+        // From the longer side: in a long thin domain the coarse levels are points along its first
+        // row, which bisect it (a single level in row order would leave long triangles from the
+        // seeded part to the far end, whose circumcircles contain each new point).
+        let across = self.columns.max(self.rows) / COARSEST_POINTS_ACROSS;
         let coarsest = (usize::BITS - across.max(1).leading_zeros() - 1).min(12);
         let mut last = VertexId::NONE;
         let mut near = Vec::with_capacity(8);

@@ -519,16 +519,15 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
                 Location::InTriangle(t) => t,
                 Location::OnEdge(e) => {
                     let twin = mesh.twin(e).triangle();
-                    if mesh.is_segment(e)
-                        || mesh.is_ghost(twin)
-                        || !members[mesh.tag(twin) as usize]
-                    {
+                    let member = members.get(mesh.tag(twin) as usize) == Some(&true);
+                    if mesh.is_segment(e) || mesh.is_ghost(twin) || !member {
                         return Seeded::Skipped;
                     }
                     e.triangle()
                 }
             };
-            if mesh.is_ghost(t) || !members[mesh.tag(t) as usize] || self.too_close(p, location) {
+            let member = members.get(mesh.tag(t) as usize) == Some(&true);
+            if mesh.is_ghost(t) || !member || self.too_close(p, location) {
                 return Seeded::Skipped;
             }
             let corners = mesh.triangle(t);
