@@ -107,30 +107,32 @@ fn the_square_with_a_hole_is_seeded_under_a_global_bound() {
 /// The unit square cut by a segment at x = 0.4 into two regions (attributes 1 and 2) with bounds
 /// of their own, the right one finer; a few free vertices and a short segment inside.
 fn two_regions() -> Pslg {
-    let mut input = MeshInput::default();
-    input.points = vec![
-        [0.0, 0.0],
-        [0.4, 0.0],
-        [1.0, 0.0],
-        [1.0, 1.0],
-        [0.4, 1.0],
-        [0.0, 1.0],
-        [0.7, 0.3],
-        [0.75, 0.45],
-        [0.2, 0.61],
-        [0.83, 0.77],
-    ];
-    input.segments = vec![
-        [0, 1],
-        [1, 2],
-        [2, 3],
-        [3, 4],
-        [4, 5],
-        [5, 0],
-        [1, 4],
-        [6, 7],
-    ];
-    input.regions = vec![[0.2, 0.5, 1.0, 2e-4], [0.6, 0.5, 2.0, 5e-5]];
+    let input = MeshInput {
+        points: vec![
+            [0.0, 0.0],
+            [0.4, 0.0],
+            [1.0, 0.0],
+            [1.0, 1.0],
+            [0.4, 1.0],
+            [0.0, 1.0],
+            [0.7, 0.3],
+            [0.75, 0.45],
+            [0.2, 0.61],
+            [0.83, 0.77],
+        ],
+        segments: vec![
+            [0, 1],
+            [1, 2],
+            [2, 3],
+            [3, 4],
+            [4, 5],
+            [5, 0],
+            [1, 4],
+            [6, 7],
+        ],
+        regions: vec![[0.2, 0.5, 1.0, 2e-4], [0.6, 0.5, 2.0, 5e-5]],
+        ..MeshInput::default()
+    };
     let polygon = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
     Pslg {
         area: Some(polygon_area(&polygon)),

@@ -187,12 +187,12 @@ impl Lattice {
             }
         }
         let needed = area / (AREA_FRACTION * bound) / 2.0;
-        if !(needed >= MIN_POINTS && needed <= budget.min(MAX_POINTS)) {
+        if needed.is_nan() || needed < MIN_POINTS || needed > budget.min(MAX_POINTS) {
             return None;
         }
         let columns = ((hi[0] - lo[0]) / spacing).ceil() + 2.0;
         let rows = ((hi[1] - lo[1]) / height).ceil() + 1.0;
-        if !(columns * rows <= SPARSE_FACTOR * needed + 65536.0) {
+        if columns * rows > SPARSE_FACTOR * needed + 65536.0 {
             return None;
         }
         let (columns, rows) = (columns as usize, rows as usize);
