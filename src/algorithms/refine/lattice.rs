@@ -8,10 +8,10 @@
 //! a walk, an encroachment cavity and a Delaunay insertion per vertex, and leaves triangles of
 //! about 0.6 of the bound on average. The lattice's triangles (60°, just under the bound) are
 //! never bad, so its points need only a walk and an insertion, and the mesh has about a third
-//! fewer triangles. Seeding the interior of the domain with a regular point set graded toward
-//! the boundary is a classical mesh-generation technique (e.g. the lattice-based quadtree
-//! meshing of Bern, Eppstein and Gilbert 1994, the "advancing front" and "bubble packing" point
-//! placements); here the boundary band is left to Delaunay refinement, which keeps its
+//! fewer triangles. Seeding the interior of a domain with a regular point set and leaving the
+//! boundary to a Delaunay method is a classical mesh-generation technique (regular interior
+//! points: e.g. Shimada and Gossard's "bubble mesh", 1995, and advancing-front placements); here
+//! the boundary band is left to Delaunay refinement, which keeps its
 //! guarantees (every angle and area bound is checked on every triangle afterwards).
 //!
 //! Order: inserting the points row by row would keep a front of long triangles between the
