@@ -227,11 +227,17 @@ impl<P: Predicates> Driver<'_, '_, P> {
 
     /// Seeds the unrefined domain with lattice points where a fixed area bound governs
     /// ([`super::lattice`]): not with the user's test or an `S` budget (there is no runaway limit
-    /// then), and within the runaway limit (an area bound asking for billions of triangles is
+    /// then), nor with `Y`/`YY` (segments kept whole: the band between a lattice and a segment
+    /// that cannot be split may keep smaller angles than refinement alone leaves), and within the runaway limit (an area bound asking for billions of triangles is
     /// stopped as a runaway). Before the copy of the unrefined state above 28.6° (which then
     /// stays small), and again on that state when it is refined at 28.6°.
     fn seed(&mut self) {
-        if let (true, Some(limit)) = (self.quality.area_lattice, self.runaway_limit) {
+        let segments_split = self.quality.no_steiner_on_segments == 0;
+        if let (true, true, Some(limit)) = (
+            self.quality.area_lattice,
+            segments_split,
+            self.runaway_limit,
+        ) {
             super::lattice::seed_lattices(
                 &mut self.refinement,
                 self.domain,
@@ -239,7 +245,6 @@ impl<P: Predicates> Driver<'_, '_, P> {
                 self.quality.variable_area,
                 limit,
                 self.quality.min_angle,
-                self.quality.no_steiner_on_segments,
             );
         }
     }

@@ -30,7 +30,7 @@
 use super::refinement::{Refinement, Seeded};
 use crate::algorithms::domain::Domain;
 use crate::geometry::{Point, Predicates};
-use crate::mesh::{Mesh, TriangleId, VertexId, OUTSIDE};
+use crate::mesh::{Mesh, TriangleId, VertexId};
 
 /// The lattice's triangles have this fraction of the area bound: just under it, so that neither
 /// the jitter (below 0.5% of a triangle's area) nor rounding makes one too big. (Measured on the
@@ -76,7 +76,6 @@ pub(super) fn seed_lattices<P: Predicates>(
     variable_area: bool,
     budget: u64,
     min_angle: Option<f64>,
-    no_steiner_on_segments: u8,
 ) {
     if min_angle.is_some_and(|angle| angle > MAX_ANGLE) {
         return;
@@ -121,13 +120,7 @@ pub(super) fn seed_lattices<P: Predicates>(
     let mut budget = budget as f64;
     for (i, &bound) in bounds.iter().enumerate() {
         let members: Vec<bool> = lattice_of_tag.iter().map(|&l| l == Some(i)).collect();
-        let Some(mut lattice) = Lattice::lay(
-            refinement.mesh(),
-            bound,
-            &members,
-            budget,
-            no_steiner_on_segments,
-        ) else {
+        let Some(mut lattice) = Lattice::lay(refinement.mesh(), bound, &members, budget) else {
             continue;
         };
         budget -= lattice.needed;
@@ -161,14 +154,7 @@ impl Lattice {
     /// The lattice for area bound `bound` over the triangles of the tags that are `members`, with
     /// the points to seed
     /// marked; `None` when it is not worth laying, or would take more than `budget` points.
-    /// `no_steiner_on_segments`: `Y` (1) or `YY` (2), which keep segments whole.
-    fn lay(
-        mesh: &Mesh,
-        bound: f64,
-        members: &[bool],
-        budget: f64,
-        no_steiner_on_segments: u8,
-    ) -> Option<Lattice> {
+    fn lay(mesh: &Mesh, bound: f64, members: &[bool], budget: f64) -> Option<Lattice> {
         let spacing = (4.0 * AREA_FRACTION * bound / 3f64.sqrt()).sqrt();
         let height = spacing * 3f64.sqrt() / 2.0;
         let in_group = |t| !mesh.is_ghost(t) && members.get(mesh.tag(t) as usize) == Some(&true);
@@ -228,20 +214,6 @@ impl Lattice {
                     [a[0] - n[0], a[1] - n[1]],
                 ];
                 lattice.rasterize(&band, false);
-            }
-            // A segment that `Y`/`YY` keep whole cannot be split when a lattice point encroaches
-            // it: no lattice point in its diametral circle, refinement meshes around it as
-            // without a lattice (else the triangles between the points and the segment stay
-            // skinny).
-            let in_domain = |t| mesh.tag(t) != OUTSIDE && !mesh.is_ghost(t);
-            let kept_whole = match no_steiner_on_segments {
-                0 => false,
-                1 => !(in_domain(e.triangle()) && in_domain(mesh.twin(e).triangle())),
-                _ => true,
-            };
-            if kept_whole {
-                let middle = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
-                lattice.rasterize_disc(middle, 0.5 * length + margin);
             }
         }
         for &p in mesh.points() {
