@@ -57,8 +57,10 @@ impl ScaledInput {
     fn new(scaling: Scaling, options: &Options, input: &Input<'_>, mut points: Vec<Point>) -> Self {
         let mut options = options.clone();
         options.max_area = options.max_area.map(|a| scaling.scale_area(a));
+        // `limit` bounds the hole and region points alone: without them no scan is needed.
         let mut limit: f64 = 1.0;
-        if scaling.is_identity() {
+        let has_seeds = !(input.holes.is_empty() && input.regions.is_empty());
+        if scaling.is_identity() && has_seeds {
             // Finite coordinates: a plain comparison finds the largest magnitude.
             for &x in points.as_flattened() {
                 let magnitude = x.abs();
@@ -66,7 +68,7 @@ impl ScaledInput {
                     limit = magnitude;
                 }
             }
-        } else {
+        } else if !scaling.is_identity() {
             for p in &mut points {
                 *p = p.map(|x| scaling.scale(x));
                 limit = limit.max(p[0].abs()).max(p[1].abs());
@@ -115,9 +117,9 @@ pub fn triangulate(
     hooks: &Hooks<'_>,
 ) -> Result<(Output, VoronoiOutput), Error> {
     check_supported(options)?;
-    let points = checked_points(input)?;
+    let (points, magnitudes) = checked_points(input)?;
     check_indices_and_seeds(options, input)?;
-    let scaling = Scaling::for_points(&points)?;
+    let scaling = Scaling::for_screened_points(&points, magnitudes)?;
     let mut scaled = ScaledInput::new(scaling, options, input, points);
     let points = std::mem::take(&mut scaled.points);
     let options = &scaled.options;

@@ -123,7 +123,7 @@ pub fn triangulate_two_halves<P: Predicates>(
     let right_start = TriangleId::new(l.mesh.triangle_count());
     let mut mesh = l.mesh;
     drop(mesh.replace_points(points));
-    mesh.append(std::mem::take(&mut r.mesh));
+    mesh.append_on_two_threads(std::mem::take(&mut r.mesh));
     let mut merger = Merger::<P> {
         mesh,
         _p: Default::default(),
