@@ -28,8 +28,8 @@ const BRIO_SEED: u64 = 0x7269_616E_676C_6521;
 fn delaunay_with<P: Predicates>(options: &Options, mut points: Vec<Point>) -> Triangulation {
     match options.algorithm {
         Algorithm::Incremental => {
-            let order = order::brio_order(&points, BRIO_SEED);
-            delaunay::triangulate::<P>(points, &order)
+            let (order, sorted) = order::brio_order_and_points(&points, BRIO_SEED);
+            delaunay::triangulate_sorted::<P>(points, &order, sorted)
         }
         Algorithm::Default | Algorithm::Sweepline => {
             let two_cores = std::thread::available_parallelism().is_ok_and(|n| n.get() >= 2);
@@ -39,8 +39,8 @@ fn delaunay_with<P: Predicates>(options: &Options, mut points: Vec<Point>) -> Tr
                     Err(given_back) => points = given_back,
                 }
             }
-            let order = order::multiscale_order(&points);
-            delaunay::triangulate::<P>(points, &order)
+            let (order, sorted) = order::multiscale_order_and_points(&points);
+            delaunay::triangulate_sorted::<P>(points, &order, sorted)
         }
     }
 }

@@ -14,7 +14,7 @@
 //! tangents.
 
 use super::{triangulate_in_order, Triangulation};
-use crate::algorithms::delaunay::order::multiscale_order;
+use crate::algorithms::delaunay::order::multiscale_order_and_points;
 use crate::geometry::{Point, Predicates};
 use crate::mesh::{EdgeId, Ghosts, Lawson, Mesh, Quad, TriangleId, VertexId, GHOST, NONE};
 
@@ -34,8 +34,7 @@ fn triangulate_half<P: Predicates>(
     ids: Vec<u32>,
     capacity: usize,
 ) -> Option<Half> {
-    let order = multiscale_order(&local_points);
-    let sorted: Vec<Point> = order.iter().map(|&i| local_points[i as usize]).collect();
+    let (order, sorted) = multiscale_order_and_points(&local_points);
     drop(local_points);
     // The input id of each vertex of the half, in insertion order.
     let global: Vec<u32> = order.iter().map(|&i| ids[i as usize]).collect();

@@ -369,6 +369,17 @@ impl<const TRACKED: bool> Lawson for AroundVertex<'_, TRACKED> {
 /// caller's indices at the end.
 pub fn triangulate<P: Predicates>(points: Vec<Point>, order: &[u32]) -> Triangulation {
     let sorted: Vec<Point> = order.iter().map(|&v| points[v as usize]).collect();
+    triangulate_sorted::<P>(points, order, sorted)
+}
+
+/// [`triangulate`] given the points in insertion order as well (`sorted[i]` is
+/// `points[order[i]]`), as [`order::multiscale_order_and_points`] gives them.
+pub fn triangulate_sorted<P: Predicates>(
+    points: Vec<Point>,
+    order: &[u32],
+    sorted: Vec<Point>,
+) -> Triangulation {
+    debug_assert_eq!(sorted.len(), order.len());
     let (mut mesh, sorted_duplicate_of) = triangulate_in_order::<P>(sorted, 0);
     mesh.rename_vertices(|v| VertexId::new(order[v.index()]));
     drop(mesh.replace_points(points));

@@ -174,14 +174,27 @@ fn radix_sort_by_high_half(mut keys: Vec<u64>) -> Vec<u64> {
     keys
 }
 
+/// Seed of the default order's rounds.
+const MULTISCALE_SEED: u64 = 0x6D75_6C74_6973_6361;
+
 /// The default insertion order: rounds growing eightfold, each in Hilbert order.
 pub fn multiscale_order(points: &[Point]) -> Vec<u32> {
-    rounds_in_hilbert_order(points, 0x6D75_6C74_6973_6361, 3)
+    rounds_in_hilbert_order(points, MULTISCALE_SEED, 3)
 }
 
 /// The order of `i`: a biased randomized insertion order, rounds doubling in size.
 pub fn brio_order(points: &[Point], seed: u64) -> Vec<u32> {
     rounds_in_hilbert_order(points, seed, 1)
+}
+
+/// [`multiscale_order`] and the points in that order.
+pub fn multiscale_order_and_points(points: &[Point]) -> (Vec<u32>, Vec<Point>) {
+    rounds_in_hilbert_order_and_points(points, MULTISCALE_SEED, 3)
+}
+
+/// [`brio_order`] and the points in that order.
+pub fn brio_order_and_points(points: &[Point], seed: u64) -> (Vec<u32>, Vec<Point>) {
+    rounds_in_hilbert_order_and_points(points, seed, 1)
 }
 
 /// Rounds of the orders: more than enough for any point count (the first rounds stay empty).
@@ -208,11 +221,45 @@ fn next_round(state: &mut u64, growth_bits: u32) -> u32 {
 /// stable). Against three radix passes over all the words and a pass by round, this moves the
 /// words through memory once.
 fn rounds_in_hilbert_order(points: &[Point], seed: u64, growth_bits: u32) -> Vec<u32> {
-    const INDEX_BITS: u32 = 27;
-    const TOP_BITS: u32 = 8;
     if points.len() >= 1 << INDEX_BITS {
         return rounds_in_hilbert_order_by_passes(points, seed, growth_bits);
     }
+    let (sorted, _) = sorted_words::<false>(points, seed, growth_bits);
+    let index_mask = (1u64 << INDEX_BITS) - 1;
+    sorted.iter().map(|&w| (w & index_mask) as u32).collect()
+}
+
+/// [`rounds_in_hilbert_order`] and the points in that order. The points travel with their
+/// words through the scatter by bucket (read in input order, written where their bucket
+/// lies) and the sorts of the buckets (in the cache), instead of being gathered afterwards in
+/// the order's random sequence of input positions, whose reads miss the cache and the TLB.
+fn rounds_in_hilbert_order_and_points(
+    points: &[Point],
+    seed: u64,
+    growth_bits: u32,
+) -> (Vec<u32>, Vec<Point>) {
+    if points.len() >= 1 << INDEX_BITS {
+        let order = rounds_in_hilbert_order_by_passes(points, seed, growth_bits);
+        let sorted = order.iter().map(|&v| points[v as usize]).collect();
+        return (order, sorted);
+    }
+    let (sorted, sorted_points) = sorted_words::<true>(points, seed, growth_bits);
+    let index_mask = (1u64 << INDEX_BITS) - 1;
+    let order = sorted.iter().map(|&w| (w & index_mask) as u32).collect();
+    (order, sorted_points)
+}
+
+/// Bits of a point's index in the words of [`sorted_words`].
+const INDEX_BITS: u32 = 27;
+
+/// The words of [`rounds_in_hilbert_order`], sorted, and (with `POINTS`) the points in the
+/// same order (else an empty list). Fewer than 2^[`INDEX_BITS`] points.
+fn sorted_words<const POINTS: bool>(
+    points: &[Point],
+    seed: u64,
+    growth_bits: u32,
+) -> (Vec<u64>, Vec<Point>) {
+    const TOP_BITS: u32 = 8;
     let key = hilbert_key_of(points);
     let mut state = seed;
     let words: Vec<u64> = points
@@ -233,27 +280,74 @@ fn rounds_in_hilbert_order(points: &[Point], seed: u64, growth_bits: u32) -> Vec
         starts[b] += starts[b - 1];
     }
     let mut sorted = vec![0u64; words.len()];
+    let mut sorted_points: Vec<Point> = if POINTS {
+        vec![[0.0; 2]; points.len()]
+    } else {
+        Vec::new()
+    };
     let mut next = starts.clone();
-    for &w in &words {
+    for (i, &w) in words.iter().enumerate() {
         let b = bucket(w);
         sorted[next[b]] = w;
+        if POINTS {
+            sorted_points[next[b]] = points[i];
+        }
         next[b] += 1;
     }
     drop(next);
     let mut spare = words;
+    let largest = starts.windows(2).map(|r| r[1] - r[0]).max().unwrap_or(0);
+    let mut spare_points: Vec<Point> = if POINTS {
+        vec![[0.0; 2]; largest]
+    } else {
+        Vec::new()
+    };
     for range in starts.windows(2) {
-        sort_bucket(&mut sorted[range[0]..range[1]], &mut spare, INDEX_BITS);
+        let (from, to) = (range[0], range[1]);
+        let bucket_points: &mut [Point] = if POINTS {
+            &mut sorted_points[from..to]
+        } else {
+            &mut []
+        };
+        sort_bucket(
+            &mut sorted[from..to],
+            bucket_points,
+            &mut spare,
+            &mut spare_points,
+            INDEX_BITS,
+        );
     }
-    let index_mask = (1u64 << INDEX_BITS) - 1;
-    sorted.iter().map(|&w| (w & index_mask) as u32).collect()
+    (sorted, sorted_points)
 }
 
 /// Sorts the words of one bucket (their top bits equal, their indices increasing) by the 24
 /// key bits above bit `index_bits`: three stable 8-bit counting passes through `spare` (small
-/// buckets by a comparison sort: the words are distinct, so any sort gives the same order).
-fn sort_bucket(words: &mut [u64], spare: &mut [u64], index_bits: u32) {
+/// buckets by insertion: the words are distinct, so any sort gives the same order). The
+/// bucket's `points` (one per word, or none at all) move with their words.
+fn sort_bucket(
+    words: &mut [u64],
+    points: &mut [Point],
+    spare: &mut [u64],
+    spare_points: &mut [Point],
+    index_bits: u32,
+) {
+    let with_points = !points.is_empty();
     if words.len() <= 64 {
-        words.sort_unstable();
+        for i in 1..words.len() {
+            let (w, p) = (words[i], if with_points { points[i] } else { [0.0; 2] });
+            let mut j = i;
+            while j > 0 && words[j - 1] > w {
+                words[j] = words[j - 1];
+                if with_points {
+                    points[j] = points[j - 1];
+                }
+                j -= 1;
+            }
+            words[j] = w;
+            if with_points {
+                points[j] = p;
+            }
+        }
         return;
     }
     let spare = &mut spare[..words.len()];
@@ -270,10 +364,21 @@ fn sort_bucket(words: &mut [u64], spare: &mut [u64], index_bits: u32) {
         for d in 1..257 {
             counts[d] += counts[d - 1];
         }
-        for &w in words.iter() {
-            let d = digit(w);
-            spare[counts[d]] = w;
-            counts[d] += 1;
+        if with_points {
+            let spare_points = &mut spare_points[..words.len()];
+            for (&w, &p) in words.iter().zip(points.iter()) {
+                let d = digit(w);
+                spare[counts[d]] = w;
+                spare_points[counts[d]] = p;
+                counts[d] += 1;
+            }
+            points.copy_from_slice(spare_points);
+        } else {
+            for &w in words.iter() {
+                let d = digit(w);
+                spare[counts[d]] = w;
+                counts[d] += 1;
+            }
         }
         words.copy_from_slice(spare);
     }
@@ -378,6 +483,32 @@ mod tests {
                     points.len()
                 );
             }
+        }
+    }
+
+    /// The points that travel with the words are the points of the order, ties, small buckets
+    /// and one bucket holding everything included.
+    #[test]
+    fn points_travel_with_their_order() {
+        let mut s = 5;
+        let mut unit = || splitmix64(&mut s) as f64 / u64::MAX as f64;
+        let uniform: Vec<Point> = (0..100_000).map(|_| [unit(), unit()]).collect();
+        let grid: Vec<Point> = (0..20_000)
+            .map(|i| [(i % 37) as f64, ((i * 7) % 23) as f64])
+            .collect();
+        let clustered: Vec<Point> = (0..30_000)
+            .map(|i| [1.0 + 1e-12 * (i % 1000) as f64, 2.0])
+            .collect();
+        for points in [&uniform, &grid, &clustered, &uniform[..70].to_vec()] {
+            for (order, sorted) in [
+                multiscale_order_and_points(points),
+                brio_order_and_points(points, 42),
+            ] {
+                let gathered: Vec<Point> = order.iter().map(|&v| points[v as usize]).collect();
+                assert_eq!(sorted, gathered);
+            }
+            assert_eq!(multiscale_order_and_points(points).0, multiscale_order(points));
+            assert_eq!(brio_order_and_points(points, 42).0, brio_order(points, 42));
         }
     }
 
