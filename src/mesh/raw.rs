@@ -159,9 +159,7 @@ impl Mesh {
         );
         let offset = self.edge_count();
         let (len, added) = (self.corners.len(), other.corners.len());
-        let Mesh {
-            corners, twins, ..
-        } = other;
+        let Mesh { corners, twins, .. } = other;
         self.corners.reserve(added);
         self.twins.reserve(added);
         let corner_room = &mut self.corners.spare_capacity_mut()[..added];

@@ -165,24 +165,23 @@ fn run<P: Predicates>(
     let base = options.first_index();
     hooks.report(Phase::Delaunay, 0, n as u64);
     // The starting mesh: the given triangles (`r`), or the Delaunay triangulation of the points.
-    let (mesh, duplicate_of) = if options.refine {
+    let (mesh, duplicates) = if options.refine {
         let mesh = reconstruct::<P>(points, input.triangles, input.corners, base)?;
-        (mesh, vec![NONE; n])
+        (mesh, Vec::new())
     } else {
-        let Triangulation { mesh, duplicate_of } = delaunay_with::<P>(options, points);
-        for (v, &u) in duplicate_of.iter().enumerate() {
-            if u != NONE {
-                // The caller's coordinates (`input.points` are not scaled).
-                output.warnings.push(format!(
-                    "A duplicate vertex at ({}, {}) appeared and was ignored (vertex {} duplicates vertex {}).",
-                    input.points[2 * v],
-                    input.points[2 * v + 1],
-                    v as i32 + base,
-                    u as i32 + base
-                ));
-            }
+        let Triangulation { mesh, duplicates } = delaunay_with::<P>(options, points);
+        for &(v, u) in &duplicates {
+            let v = v as usize;
+            // The caller's coordinates (`input.points` are not scaled).
+            output.warnings.push(format!(
+                "A duplicate vertex at ({}, {}) appeared and was ignored (vertex {} duplicates vertex {}).",
+                input.points[2 * v],
+                input.points[2 * v + 1],
+                v as i32 + base,
+                u as i32 + base
+            ));
         }
-        (mesh, duplicate_of)
+        (mesh, duplicates)
     };
     hooks.report(Phase::Delaunay, n as u64, n as u64);
     // A plain Delaunay triangulation in the caller's units: its outputs are built from the mesh
@@ -213,6 +212,11 @@ fn run<P: Predicates>(
         let mut cdt = Constrainer::new(Inserter::<P>::new(std::mem::take(&mut meshed.mesh)));
         cdt.split_segments = options.split_segments;
         if options.pslg {
+            // Per vertex: the copy in the mesh of a duplicate, NONE for the others.
+            let mut duplicate_of = vec![NONE; n];
+            for &(v, u) in &duplicates {
+                duplicate_of[v as usize] = u;
+            }
             insert_segments(
                 &mut cdt,
                 input,

@@ -16,7 +16,7 @@
 use super::{triangulate_in_order, Triangulation};
 use crate::algorithms::delaunay::order::multiscale_order_and_points;
 use crate::geometry::{Point, Predicates};
-use crate::mesh::{EdgeId, Ghosts, Lawson, Mesh, Quad, TriangleId, VertexId, GHOST, NONE};
+use crate::mesh::{EdgeId, Ghosts, Lawson, Mesh, Quad, TriangleId, VertexId, GHOST};
 
 /// Below this many points one thread is faster than two.
 pub const PARALLEL_THRESHOLD: usize = 20_000;
@@ -46,9 +46,7 @@ fn triangulate_half<P: Predicates>(
     mesh.rename_vertices(|v| VertexId::new(global[v.index()]));
     let duplicate_of = duplicates
         .iter()
-        .enumerate()
-        .filter(|(_, &u)| u != NONE)
-        .map(|(i, &u)| (global[i], global[u as usize]))
+        .map(|&(v, u)| (global[v as usize], global[u as usize]))
         .collect();
     Some(Half { mesh, duplicate_of })
 }
@@ -114,10 +112,13 @@ pub fn triangulate_two_halves<P: Predicates>(
     let (Some(l), Some(mut r)) = (l, r) else {
         return Err(points);
     };
-    let mut duplicate_of = vec![NONE; n];
-    for &(v, u) in l.duplicate_of.iter().chain(&r.duplicate_of) {
-        duplicate_of[v as usize] = u;
-    }
+    let mut duplicates: Vec<(u32, u32)> = l
+        .duplicate_of
+        .iter()
+        .chain(&r.duplicate_of)
+        .copied()
+        .collect();
+    duplicates.sort_unstable();
     // One mesh: the right half's triangles after the left half's.
     let right_start = TriangleId::new(l.mesh.triangle_count());
     let mut mesh = l.mesh;
@@ -130,7 +131,7 @@ pub fn triangulate_two_halves<P: Predicates>(
     merger.merge(right_start);
     let mut triangulation = Triangulation {
         mesh: merger.mesh,
-        duplicate_of,
+        duplicates,
     };
     triangulation.keep_first_copies();
     Ok(triangulation)
@@ -457,10 +458,11 @@ mod tests {
         }
         let real = m.triangle_count() as usize - ghosts;
         assert_eq!(real, 2 * distinct - 2 - ghosts);
-        assert_eq!(
-            t.duplicate_of.iter().filter(|&&u| u != NONE).count(),
-            t.duplicate_of.len() - distinct
-        );
+        assert_eq!(t.duplicates.len(), m.vertex_count() as usize - distinct);
+        for &(v, u) in &t.duplicates {
+            assert_eq!(m.point(VertexId::new(v)), m.point(VertexId::new(u)));
+            assert!(u < v, "the first copy is the one in the mesh");
+        }
     }
 
     fn uniform(n: usize, seed: u64) -> Vec<Point> {

@@ -64,9 +64,11 @@ fn location_in_triangle(
 #[derive(Clone, Debug, Default)]
 pub struct Triangulation {
     pub mesh: Mesh,
-    /// Per input vertex: [`NONE`] if it is a vertex of the triangulation, else the vertex at the
-    /// same position that was inserted instead (duplicates are left out).
-    pub duplicate_of: Vec<u32>,
+    /// The input vertices left out as duplicates, by increasing vertex: (vertex, the vertex at
+    /// the same position that is in the triangulation). A list rather than one entry per
+    /// vertex: duplicates are rare, and an array as long as the input costs a pass and its
+    /// fresh pages.
+    pub duplicates: Vec<(u32, u32)>,
 }
 
 impl Triangulation {
@@ -75,14 +77,23 @@ impl Triangulation {
         self.mesh.triangle_count() == 0
     }
 
+    /// Per input vertex: [`NONE`] if it is a vertex of the triangulation, else the vertex at the
+    /// same position that was inserted instead.
+    pub fn duplicate_of(&self) -> Vec<u32> {
+        let mut duplicate_of = vec![NONE; self.mesh.vertex_count() as usize];
+        for &(v, u) in &self.duplicates {
+            duplicate_of[v as usize] = u;
+        }
+        duplicate_of
+    }
+
     /// Makes the first copy (smallest index) of every duplicated point the one in the mesh, as
     /// Triangle's documentation of `j` says, whichever copy the insertion order met first: the
     /// copies have the same coordinates, so the survivor's id is swapped for the first copy's.
     pub fn keep_first_copies(&mut self) {
         let mut first_copy: std::collections::HashMap<u32, u32> = std::collections::HashMap::new();
-        for (v, &u) in self.duplicate_of.iter().enumerate() {
-            let v = v as u32;
-            if u != NONE && v < u && first_copy.get(&u).is_none_or(|&w| v < w) {
+        for &(v, u) in &self.duplicates {
+            if v < u && first_copy.get(&u).is_none_or(|&w| v < w) {
                 first_copy.insert(u, v);
             }
         }
@@ -95,14 +106,17 @@ impl Triangulation {
             self.mesh
                 .swap_vertex_edges(VertexId::new(u), VertexId::new(w));
         }
-        for (v, u) in self.duplicate_of.iter_mut().enumerate() {
+        // The first copy `w` of survivor `u` takes its place: `u` becomes a duplicate of `w`,
+        // and so does every other copy.
+        for (v, u) in self.duplicates.iter_mut() {
             if let Some(&w) = first_copy.get(u) {
-                *u = if v as u32 == w { NONE } else { w };
+                if *v == w {
+                    *v = *u;
+                }
+                *u = w;
             }
         }
-        for (&u, &w) in &first_copy {
-            self.duplicate_of[u as usize] = w;
-        }
+        self.duplicates.sort_unstable();
     }
 }
 
@@ -380,16 +394,15 @@ pub fn triangulate_sorted<P: Predicates>(
     sorted: Vec<Point>,
 ) -> Triangulation {
     debug_assert_eq!(sorted.len(), order.len());
-    let (mut mesh, sorted_duplicate_of) = triangulate_in_order::<P>(sorted, 0);
+    let (mut mesh, sorted_duplicates) = triangulate_in_order::<P>(sorted, 0);
     mesh.rename_vertices(|v| VertexId::new(order[v.index()]));
     drop(mesh.replace_points(points));
-    let mut duplicate_of = vec![NONE; order.len()];
-    for (i, &u) in sorted_duplicate_of.iter().enumerate() {
-        if u != NONE {
-            duplicate_of[order[i] as usize] = order[u as usize];
-        }
-    }
-    let mut triangulation = Triangulation { mesh, duplicate_of };
+    let mut duplicates: Vec<(u32, u32)> = sorted_duplicates
+        .iter()
+        .map(|&(v, u)| (order[v as usize], order[u as usize]))
+        .collect();
+    duplicates.sort_unstable();
+    let mut triangulation = Triangulation { mesh, duplicates };
     triangulation.keep_first_copies();
     triangulation
 }
@@ -469,9 +482,10 @@ mod tests {
         let t = triangulate::<Exact>(pts, &ord);
         check_delaunay(&t);
         assert_eq!(t.mesh.real_triangles().count(), 2 * 81);
-        assert_eq!(t.duplicate_of[100], 33);
-        assert_eq!(t.duplicate_of[101], 0);
-        assert!(t.duplicate_of[33] == NONE && t.duplicate_of[0] == NONE);
+        let duplicate_of = t.duplicate_of();
+        assert_eq!(duplicate_of[100], 33);
+        assert_eq!(duplicate_of[101], 0);
+        assert!(duplicate_of[33] == NONE && duplicate_of[0] == NONE);
         assert!(t.mesh.raw_corners().contains(&33) && !t.mesh.raw_corners().contains(&100));
         let line: Vec<Point> = (0..10).map(|i| [i as f64, 2.0 * i as f64]).collect();
         let ord = order::hilbert_order(&line);

@@ -507,7 +507,10 @@ mod tests {
                 let gathered: Vec<Point> = order.iter().map(|&v| points[v as usize]).collect();
                 assert_eq!(sorted, gathered);
             }
-            assert_eq!(multiscale_order_and_points(points).0, multiscale_order(points));
+            assert_eq!(
+                multiscale_order_and_points(points).0,
+                multiscale_order(points)
+            );
             assert_eq!(brio_order_and_points(points, 42).0, brio_order(points, 42));
         }
     }
