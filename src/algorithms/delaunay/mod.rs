@@ -383,28 +383,75 @@ impl<const TRACKED: bool> Lawson for AroundVertex<'_, TRACKED> {
 /// caller's indices at the end.
 pub fn triangulate<P: Predicates>(points: Vec<Point>, order: &[u32]) -> Triangulation {
     let sorted: Vec<Point> = order.iter().map(|&v| points[v as usize]).collect();
-    triangulate_sorted::<P>(points, order, sorted)
+    triangulate_sorted::<P>(points, order.to_vec(), sorted)
 }
 
 /// [`triangulate`] given the points in insertion order as well (`sorted[i]` is
 /// `points[order[i]]`), as [`order::multiscale_order_and_points`] gives them.
 pub fn triangulate_sorted<P: Predicates>(
     points: Vec<Point>,
-    order: &[u32],
+    order: Vec<u32>,
     sorted: Vec<Point>,
 ) -> Triangulation {
-    debug_assert_eq!(sorted.len(), order.len());
-    let (mut mesh, sorted_duplicates) = triangulate_in_order::<P>(sorted, 0);
-    mesh.rename_vertices(|v| VertexId::new(order[v.index()]));
+    let InInsertionOrder {
+        mut triangulation,
+        names,
+    } = triangulate_in_insertion_order::<P>(order, sorted);
+    let mesh = &mut triangulation.mesh;
+    mesh.rename_vertices(|v| VertexId::new(names[v.index()]));
     drop(mesh.replace_points(points));
+    triangulation
+}
+
+/// A triangulation whose vertices are numbered in insertion order, with the caller's number of
+/// each: the outputs of a plain triangulation rename the corners as they write them, which
+/// spares a pass over the mesh.
+pub struct InInsertionOrder {
+    /// The mesh over the points in insertion order; `duplicates` in the caller's numbers.
+    pub triangulation: Triangulation,
+    /// The caller's number of each vertex of the mesh: the insertion order, with each
+    /// duplicated point's first copy (smallest number) standing for the copy that was inserted,
+    /// as [`Triangulation::keep_first_copies`] makes it.
+    pub names: Vec<u32>,
+}
+
+/// Triangulates the points `sorted`, inserting them in their order, `order` giving the
+/// caller's number of each (`sorted[i]` is the caller's point `order[i]`).
+pub fn triangulate_in_insertion_order<P: Predicates>(
+    order: Vec<u32>,
+    sorted: Vec<Point>,
+) -> InInsertionOrder {
+    debug_assert_eq!(sorted.len(), order.len());
+    let (mesh, sorted_duplicates) = triangulate_in_order::<P>(sorted, 0);
+    let mut names = order;
+    // The first copy of each inserted point (by the caller's numbers) takes its place.
+    let mut first_copy: std::collections::HashMap<u32, u32> = std::collections::HashMap::new();
+    for &(v, u) in &sorted_duplicates {
+        let (copy, kept) = (names[v as usize], names[u as usize]);
+        if copy < kept && first_copy.get(&u).is_none_or(|&w| copy < w) {
+            first_copy.insert(u, copy);
+        }
+    }
     let mut duplicates: Vec<(u32, u32)> = sorted_duplicates
         .iter()
-        .map(|&(v, u)| (order[v as usize], order[u as usize]))
+        .map(|&(v, u)| {
+            let (copy, kept) = (names[v as usize], names[u as usize]);
+            match first_copy.get(&u) {
+                // The inserted copy becomes a duplicate of the first, which takes its place.
+                Some(&w) if w == copy => (kept, w),
+                Some(&w) => (copy, w),
+                None => (copy, kept),
+            }
+        })
         .collect();
     duplicates.sort_unstable();
-    let mut triangulation = Triangulation { mesh, duplicates };
-    triangulation.keep_first_copies();
-    triangulation
+    for (&u, &w) in &first_copy {
+        names[u as usize] = w;
+    }
+    InInsertionOrder {
+        triangulation: Triangulation { mesh, duplicates },
+        names,
+    }
 }
 
 #[cfg(test)]
