@@ -644,7 +644,9 @@ mod tests {
         for switches in ["Q", "Qz", "Qi", "Qzi"] {
             let run = |switches: &str| {
                 let options = Options::parse(switches, SwitchSource::Library).expect("switches");
-                triangulate(&options, &input, &Hooks::default()).expect("triangulated").0
+                triangulate(&options, &input, &Hooks::default())
+                    .expect("triangulated")
+                    .0
             };
             let plain = run(switches);
             // Edges are not among the plain outputs: this run takes the general path.
@@ -656,7 +658,11 @@ mod tests {
             assert_eq!(plain.warnings.len(), 4, "{switches}");
             assert_eq!(
                 (plain.triangle_count, plain.edge_count, plain.segment_count),
-                (general.triangle_count, general.edge_count, general.segment_count),
+                (
+                    general.triangle_count,
+                    general.edge_count,
+                    general.segment_count
+                ),
                 "{switches}"
             );
         }
