@@ -350,37 +350,53 @@ fn sort_bucket(
         }
         return;
     }
-    let spare = &mut spare[..words.len()];
+    let n = words.len();
+    let spare = &mut spare[..n];
+    let spare_points: &mut [Point] = if with_points {
+        &mut spare_points[..n]
+    } else {
+        &mut []
+    };
+    // The passes go back and forth between the bucket and the spare room; one copy at the end
+    // if the words end up in the spare room.
+    let mut in_spare = false;
     for pass in 0..3 {
         let shift = index_bits + 8 * pass;
         let digit = |w: u64| ((w >> shift) & 0xff) as usize;
+        let (from, to, from_points, to_points) = if in_spare {
+            (&*spare, &mut *words, &*spare_points, &mut *points)
+        } else {
+            (&*words, &mut *spare, &*points, &mut *spare_points)
+        };
         let mut counts = [0usize; 257];
-        for &w in words.iter() {
+        for &w in from {
             counts[digit(w) + 1] += 1;
         }
-        if counts.contains(&words.len()) {
+        if counts.contains(&n) {
             continue; // one digit value for all words: the pass would not move anything
         }
         for d in 1..257 {
             counts[d] += counts[d - 1];
         }
         if with_points {
-            let spare_points = &mut spare_points[..words.len()];
-            for (&w, &p) in words.iter().zip(points.iter()) {
+            for (&w, &p) in from.iter().zip(from_points) {
                 let d = digit(w);
-                spare[counts[d]] = w;
-                spare_points[counts[d]] = p;
+                to[counts[d]] = w;
+                to_points[counts[d]] = p;
                 counts[d] += 1;
             }
-            points.copy_from_slice(spare_points);
         } else {
-            for &w in words.iter() {
+            for &w in from {
                 let d = digit(w);
-                spare[counts[d]] = w;
+                to[counts[d]] = w;
                 counts[d] += 1;
             }
         }
+        in_spare = !in_spare;
+    }
+    if in_spare {
         words.copy_from_slice(spare);
+        points.copy_from_slice(spare_points);
     }
 }
 
