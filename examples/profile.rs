@@ -174,7 +174,7 @@ fn profile_order(n: usize, reps: usize) {
         drop((order, sorted));
         let (start, cpu) = (Instant::now(), cpu_seconds());
         let (order, sorted) =
-            triangle_rs::algorithms::delaunay::order::multiscale_order_and_points(&points);
+            triangle_rs::algorithms::delaunay::order::multiscale_order_and_points(&points, None);
         println!(
             "order n={n}: then gathered wall {:.3} s, cpu {:.3} s; carried wall {:.3} s, \
              cpu {:.3} s (first {:?}, {:?})",

@@ -150,6 +150,25 @@ impl Mesh {
         unsafe { *self.twins.get_unchecked_mut(e.index()) = twin.raw() };
     }
 
+    /// [`Mesh::with_capacity`] whose twin array is `twins`' allocation (emptied, grown to the
+    /// room needed): memory the caller used as scratch, whose pages are already in place.
+    pub fn with_capacity_reusing(
+        points: Vec<Point>,
+        triangles: usize,
+        mut twins: Vec<u32>,
+    ) -> Mesh {
+        twins.clear();
+        twins.reserve(3 * triangles);
+        Mesh {
+            points,
+            corners: Vec::with_capacity(3 * triangles),
+            twins,
+            segment: Vec::new(),
+            vertex_edge: Vec::new(),
+            tag: Vec::new(),
+        }
+    }
+
     /// [`Mesh::append`] with each array copied on two threads: the copies' cost is mostly the
     /// fresh pages they write, which two cores fault in twice as fast (the merge of two halves,
     /// whose appended half is as large as the mesh). One array at a time, each of `other`'s

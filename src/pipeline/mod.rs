@@ -30,27 +30,29 @@ const BRIO_SEED: u64 = 0x7269_616E_676C_6521;
 /// points beside it (the plain outputs rename as they write).
 fn delaunay_with<P: Predicates>(
     options: &Options,
-    mut points: Vec<Point>,
+    points: Vec<Point>,
     in_insertion_order: bool,
 ) -> Delaunay {
-    let (order, sorted) = match options.algorithm {
-        Algorithm::Incremental => order::brio_order_and_points(&points, BRIO_SEED),
-        Algorithm::Default | Algorithm::Sweepline => {
-            let two_cores = std::thread::available_parallelism().is_ok_and(|n| n.get() >= 2);
-            if two_cores && points.len() >= merge::PARALLEL_THRESHOLD {
-                match merge::triangulate_two_halves::<P>(points) {
-                    Ok(triangulation) => return Delaunay::Renamed(triangulation),
-                    Err(given_back) => points = given_back,
-                }
-            }
-            order::multiscale_order_and_points(&points)
-        }
+    let kind = match options.algorithm {
+        Algorithm::Incremental => order::OrderKind::Brio(BRIO_SEED),
+        Algorithm::Default | Algorithm::Sweepline => order::OrderKind::Multiscale,
     };
+    let mut points = points;
+    let two_cores = std::thread::available_parallelism().is_ok_and(|n| n.get() >= 2);
+    if kind == order::OrderKind::Multiscale
+        && two_cores
+        && points.len() >= merge::PARALLEL_THRESHOLD
+    {
+        match merge::triangulate_two_halves::<P>(points) {
+            Ok(triangulation) => return Delaunay::Renamed(triangulation),
+            Err(given_back) => points = given_back,
+        }
+    }
+    let built = delaunay::triangulate_ordered::<P>(delaunay::order_in_room(&points, kind, 0));
     if in_insertion_order {
-        let built = delaunay::triangulate_in_insertion_order::<P>(order, sorted);
         Delaunay::InInsertionOrder(built, points)
     } else {
-        Delaunay::Renamed(delaunay::triangulate_sorted::<P>(points, order, sorted))
+        Delaunay::Renamed(built.into_caller_numbers(points))
     }
 }
 

@@ -13,8 +13,8 @@
 //! chains have as many edges as the zip makes triangles, and two new ghosts close the hull at the
 //! tangents.
 
-use super::{triangulate_in_order, Triangulation};
-use crate::algorithms::delaunay::order::multiscale_order_and_points;
+use super::order::OrderKind;
+use super::{order_in_room, triangulate_ordered, InInsertionOrder, Triangulation};
 use crate::geometry::{Point, Predicates};
 use crate::mesh::{EdgeId, Ghosts, Lawson, Mesh, Quad, TriangleId, VertexId, GHOST};
 
@@ -34,21 +34,29 @@ fn triangulate_half<P: Predicates>(
     ids: Vec<u32>,
     capacity: usize,
 ) -> Option<Half> {
-    let (order, sorted) = multiscale_order_and_points(&local_points);
+    let mut ordered = order_in_room(&local_points, OrderKind::Multiscale, capacity);
     drop(local_points);
-    // The input id of each vertex of the half, in insertion order.
-    let global: Vec<u32> = order.iter().map(|&i| ids[i as usize]).collect();
-    drop((order, ids));
-    let (mut mesh, duplicates) = triangulate_in_order::<P>(sorted, capacity);
+    // Numbered by input id (increasing with the local index, so first copies stay first).
+    for v in ordered.order.iter_mut() {
+        *v = ids[*v as usize];
+    }
+    drop(ids);
+    let InInsertionOrder {
+        triangulation,
+        names,
+    } = triangulate_ordered::<P>(ordered);
+    let Triangulation {
+        mut mesh,
+        duplicates,
+    } = triangulation;
     if mesh.triangle_count() == 0 {
         return None;
     }
-    mesh.rename_vertices(|v| VertexId::new(global[v.index()]));
-    let duplicate_of = duplicates
-        .iter()
-        .map(|&(v, u)| (global[v as usize], global[u as usize]))
-        .collect();
-    Some(Half { mesh, duplicate_of })
+    mesh.rename_vertices(|v| VertexId::new(names[v.index()]));
+    Some(Half {
+        mesh,
+        duplicate_of: duplicates,
+    })
 }
 
 /// The points on one side of the split point `split` (lexicographically; its copies on the

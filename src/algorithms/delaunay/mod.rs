@@ -393,14 +393,7 @@ pub fn triangulate_sorted<P: Predicates>(
     order: Vec<u32>,
     sorted: Vec<Point>,
 ) -> Triangulation {
-    let InInsertionOrder {
-        mut triangulation,
-        names,
-    } = triangulate_in_insertion_order::<P>(order, sorted);
-    let mesh = &mut triangulation.mesh;
-    mesh.rename_vertices(|v| VertexId::new(names[v.index()]));
-    drop(mesh.replace_points(points));
-    triangulation
+    triangulate_in_insertion_order::<P>(order, sorted).into_caller_numbers(points)
 }
 
 /// A triangulation whose vertices are numbered in insertion order, with the caller's number of
@@ -415,14 +408,93 @@ pub struct InInsertionOrder {
     pub names: Vec<u32>,
 }
 
+impl InInsertionOrder {
+    /// The triangulation in the caller's numbers, over the caller's `points`.
+    pub fn into_caller_numbers(self, points: Vec<Point>) -> Triangulation {
+        let InInsertionOrder {
+            mut triangulation,
+            names,
+        } = self;
+        let mesh = &mut triangulation.mesh;
+        mesh.rename_vertices(|v| VertexId::new(names[v.index()]));
+        drop(mesh.replace_points(points));
+        triangulation
+    }
+}
+
+/// Points in insertion order ([`order_in_room`]), with the allocation of the twin array to be.
+pub struct Ordered {
+    /// The caller's number of each point, in insertion order.
+    pub order: Vec<u32>,
+    /// The points in insertion order.
+    pub sorted: Vec<Point>,
+    twins: Vec<u32>,
+    capacity: usize,
+}
+
+/// Orders `points` (`kind`) for a mesh with room for `capacity` triangle slots (at least the
+/// `2n + 2` the build may use): the order's sort works in the room of the mesh's twin array,
+/// which [`triangulate_ordered`] then gives the mesh. The pages the sort touches are pages the
+/// twins fill later, where separate buffers would be fresh pages twice (a fresh page costs
+/// microseconds).
+pub fn order_in_room(points: &[Point], kind: order::OrderKind, capacity: usize) -> Ordered {
+    let n = points.len();
+    let capacity = capacity.max(2 * n + 2);
+    let mut twins: Vec<u32> = Vec::with_capacity(3 * capacity);
+    let (order, sorted) = kind.order_and_points(points, Some(words_in_room_of(&mut twins, 2 * n)));
+    Ordered {
+        order,
+        sorted,
+        twins,
+        capacity,
+    }
+}
+
+/// Triangulates ordered points, inserting them in their order (see [`InInsertionOrder`]).
+pub fn triangulate_ordered<P: Predicates>(ordered: Ordered) -> InInsertionOrder {
+    let Ordered {
+        order,
+        sorted,
+        twins,
+        capacity,
+    } = ordered;
+    triangulate_with_twins::<P>(order, sorted, capacity, twins)
+}
+
+/// Up to `count` words (zeroed) in the spare room of `v` (fewer, or none, when it has less).
+fn words_in_room_of(v: &mut Vec<u32>, count: usize) -> &mut [u64] {
+    let room = v.spare_capacity_mut();
+    // SAFETY: a `MaybeUninit<u64>` may hold any bits, so viewing the aligned middle of the room
+    // as such is sound; `align_to_mut` keeps the alignment of `u64`.
+    let (_, words, _) = unsafe { room.align_to_mut::<std::mem::MaybeUninit<u64>>() };
+    let count = count.min(words.len());
+    let words = &mut words[..count];
+    for w in words.iter_mut() {
+        w.write(0);
+    }
+    // SAFETY: every item was just initialized, and `MaybeUninit<u64>` has the layout of `u64`.
+    unsafe { &mut *(words as *mut [std::mem::MaybeUninit<u64>] as *mut [u64]) }
+}
+
 /// Triangulates the points `sorted`, inserting them in their order, `order` giving the
 /// caller's number of each (`sorted[i]` is the caller's point `order[i]`).
 pub fn triangulate_in_insertion_order<P: Predicates>(
     order: Vec<u32>,
     sorted: Vec<Point>,
 ) -> InInsertionOrder {
+    triangulate_with_twins::<P>(order, sorted, 0, Vec::new())
+}
+
+/// [`triangulate_in_insertion_order`] with room for `capacity` triangle slots, the twin array
+/// in `twins`' allocation.
+fn triangulate_with_twins<P: Predicates>(
+    order: Vec<u32>,
+    sorted: Vec<Point>,
+    capacity: usize,
+    twins: Vec<u32>,
+) -> InInsertionOrder {
     debug_assert_eq!(sorted.len(), order.len());
-    let (mesh, sorted_duplicates) = triangulate_in_order::<P>(sorted, 0);
+    let (mesh, sorted_duplicates) = triangulate_in_order::<P>(sorted, capacity, twins);
     let mut names = order;
     // The first copy of each inserted point (by the caller's numbers) takes its place.
     let mut first_copy: std::collections::HashMap<u32, u32> = std::collections::HashMap::new();

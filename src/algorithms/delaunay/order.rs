@@ -187,14 +187,45 @@ pub fn brio_order(points: &[Point], seed: u64) -> Vec<u32> {
     rounds_in_hilbert_order(points, seed, 1)
 }
 
-/// [`multiscale_order`] and the points in that order.
-pub fn multiscale_order_and_points(points: &[Point]) -> (Vec<u32>, Vec<Point>) {
-    rounds_in_hilbert_order_and_points(points, MULTISCALE_SEED, 3)
+/// [`multiscale_order`] and the points in that order; the sort works in `room` when it is given
+/// with room for two words per point (see [`OrderKind::order_and_points`]).
+pub fn multiscale_order_and_points(
+    points: &[Point],
+    room: Option<&mut [u64]>,
+) -> (Vec<u32>, Vec<Point>) {
+    rounds_in_hilbert_order_and_points(points, MULTISCALE_SEED, 3, room)
 }
 
-/// [`brio_order`] and the points in that order.
-pub fn brio_order_and_points(points: &[Point], seed: u64) -> (Vec<u32>, Vec<Point>) {
-    rounds_in_hilbert_order_and_points(points, seed, 1)
+/// [`brio_order`] and the points in that order (`room` as for [`multiscale_order_and_points`]).
+pub fn brio_order_and_points(
+    points: &[Point],
+    seed: u64,
+    room: Option<&mut [u64]>,
+) -> (Vec<u32>, Vec<Point>) {
+    rounds_in_hilbert_order_and_points(points, seed, 1, room)
+}
+
+/// Which insertion order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OrderKind {
+    /// [`multiscale_order`], the default.
+    Multiscale,
+    /// [`brio_order`] with this seed (`i`).
+    Brio(u64),
+}
+
+impl OrderKind {
+    /// The order and the points in it (`room` as for [`multiscale_order_and_points`]).
+    pub fn order_and_points(
+        self,
+        points: &[Point],
+        room: Option<&mut [u64]>,
+    ) -> (Vec<u32>, Vec<Point>) {
+        match self {
+            OrderKind::Multiscale => multiscale_order_and_points(points, room),
+            OrderKind::Brio(seed) => brio_order_and_points(points, seed, room),
+        }
+    }
 }
 
 /// Rounds of the orders: more than enough for any point count (the first rounds stay empty).
@@ -224,62 +255,79 @@ fn rounds_in_hilbert_order(points: &[Point], seed: u64, growth_bits: u32) -> Vec
     if points.len() >= 1 << INDEX_BITS {
         return rounds_in_hilbert_order_by_passes(points, seed, growth_bits);
     }
-    let (sorted, _) = sorted_words::<false>(points, seed, growth_bits);
+    let n = points.len();
+    let mut room = vec![0u64; 2 * n];
+    sorted_words::<false>(points, seed, growth_bits, &mut room);
     let index_mask = (1u64 << INDEX_BITS) - 1;
-    sorted.iter().map(|&w| (w & index_mask) as u32).collect()
+    room[n..].iter().map(|&w| (w & index_mask) as u32).collect()
 }
 
 /// [`rounds_in_hilbert_order`] and the points in that order. The points travel with their
 /// words through the scatter by bucket (read in input order, written where their bucket
 /// lies) and the sorts of the buckets (in the cache), instead of being gathered afterwards in
 /// the order's random sequence of input positions, whose reads miss the cache and the TLB.
+///
+/// The sort works in `room` when it is given with room for two words per point (its contents
+/// are overwritten), else in an allocation of its own.
 fn rounds_in_hilbert_order_and_points(
     points: &[Point],
     seed: u64,
     growth_bits: u32,
+    room: Option<&mut [u64]>,
 ) -> (Vec<u32>, Vec<Point>) {
-    if points.len() >= 1 << INDEX_BITS {
+    let n = points.len();
+    if n >= 1 << INDEX_BITS {
         let order = rounds_in_hilbert_order_by_passes(points, seed, growth_bits);
         let sorted = order.iter().map(|&v| points[v as usize]).collect();
         return (order, sorted);
     }
-    let (sorted, sorted_points) = sorted_words::<true>(points, seed, growth_bits);
+    let mut own: Vec<u64>;
+    let room = match room {
+        Some(room) if room.len() >= 2 * n => room,
+        _ => {
+            own = vec![0u64; 2 * n];
+            &mut own[..]
+        }
+    };
+    let sorted_points = sorted_words::<true>(points, seed, growth_bits, room);
     let index_mask = (1u64 << INDEX_BITS) - 1;
-    let order = sorted.iter().map(|&w| (w & index_mask) as u32).collect();
+    let order = room[n..2 * n]
+        .iter()
+        .map(|&w| (w & index_mask) as u32)
+        .collect();
     (order, sorted_points)
 }
 
 /// Bits of a point's index in the words of [`sorted_words`].
 const INDEX_BITS: u32 = 27;
 
-/// The words of [`rounds_in_hilbert_order`], sorted, and (with `POINTS`) the points in the
-/// same order (else an empty list). Fewer than 2^[`INDEX_BITS`] points.
+/// Sorts the words of [`rounds_in_hilbert_order`] into `room[n..2n]` (`room[..n]` is the
+/// sort's spare room) and returns (with `POINTS`) the points in the same order (else an empty
+/// list). Fewer than 2^[`INDEX_BITS`] points; `room` holds at least two words per point.
 fn sorted_words<const POINTS: bool>(
     points: &[Point],
     seed: u64,
     growth_bits: u32,
-) -> (Vec<u64>, Vec<Point>) {
+    room: &mut [u64],
+) -> Vec<Point> {
     const TOP_BITS: u32 = 8;
+    let n = points.len();
+    let (words, sorted) = room[..2 * n].split_at_mut(n);
     let key = hilbert_key_of(points);
     let mut state = seed;
-    let words: Vec<u64> = points
-        .iter()
-        .enumerate()
-        .map(|(i, &p)| {
-            let round = u64::from(next_round(&mut state, growth_bits));
-            (round << (32 + INDEX_BITS)) | (u64::from(key(p)) << INDEX_BITS) | i as u64
-        })
-        .collect();
+    for (i, (word, &p)) in words.iter_mut().zip(points).enumerate() {
+        let round = u64::from(next_round(&mut state, growth_bits));
+        *word = (round << (32 + INDEX_BITS)) | (u64::from(key(p)) << INDEX_BITS) | i as u64;
+    }
     // The bucket of a word: its round and the top bits of its key.
     let bucket = |w: u64| (w >> (32 + INDEX_BITS - TOP_BITS)) as usize;
     let mut starts = vec![0usize; (ROUNDS << TOP_BITS) + 1];
-    for &w in &words {
+    for &w in words.iter() {
         starts[bucket(w) + 1] += 1;
     }
     for b in 1..starts.len() {
         starts[b] += starts[b - 1];
     }
-    let mut sorted = vec![0u64; words.len()];
     let mut sorted_points: Vec<Point> = if POINTS {
         vec![[0.0; 2]; points.len()]
     } else {
@@ -295,7 +343,7 @@ fn sorted_words<const POINTS: bool>(
         next[b] += 1;
     }
     drop(next);
-    let mut spare = words;
+    let spare = words;
     let largest = starts.windows(2).map(|r| r[1] - r[0]).max().unwrap_or(0);
     let mut spare_points: Vec<Point> = if POINTS {
         vec![[0.0; 2]; largest]
@@ -312,12 +360,12 @@ fn sorted_words<const POINTS: bool>(
         sort_bucket(
             &mut sorted[from..to],
             bucket_points,
-            &mut spare,
+            spare,
             &mut spare_points,
             INDEX_BITS,
         );
     }
-    (sorted, sorted_points)
+    sorted_points
 }
 
 /// Sorts the words of one bucket (their top bits equal, their indices increasing) by the 24
@@ -517,17 +565,20 @@ mod tests {
             .collect();
         for points in [&uniform, &grid, &clustered, &uniform[..70].to_vec()] {
             for (order, sorted) in [
-                multiscale_order_and_points(points),
-                brio_order_and_points(points, 42),
+                multiscale_order_and_points(points, None),
+                brio_order_and_points(points, 42, Some(&mut vec![7; 2 * points.len()])),
             ] {
                 let gathered: Vec<Point> = order.iter().map(|&v| points[v as usize]).collect();
                 assert_eq!(sorted, gathered);
             }
             assert_eq!(
-                multiscale_order_and_points(points).0,
+                multiscale_order_and_points(points, None).0,
                 multiscale_order(points)
             );
-            assert_eq!(brio_order_and_points(points, 42).0, brio_order(points, 42));
+            assert_eq!(
+                brio_order_and_points(points, 42, None).0,
+                brio_order(points, 42)
+            );
         }
     }
 
