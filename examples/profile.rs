@@ -5,7 +5,8 @@
 //! `delaunay`, size, repetitions; `SWITCHES` overrides the switches). Prints each run's times.
 //! Mode `files` profiles the command-line program's file work on the Delaunay input in memory:
 //! writing its `.node` text, reading it back, and writing the `.ele` of its triangulation. Mode
-//! `order` times the default insertion order (Hilbert curve in random rounds) of those points.
+//! `order` times the default insertion order (Hilbert curve in random rounds) of those points,
+//! with the points gathered afterwards and carried through the sort.
 
 #[allow(dead_code)]
 #[path = "../tests/common/rng.rs"]
@@ -160,18 +161,29 @@ fn profile_files(n: usize, reps: usize) {
     }
 }
 
-/// Times the default insertion order of `n` uniform points (the Delaunay mode's), `reps` times.
+/// Times the default insertion order of `n` uniform points (the Delaunay mode's) with the
+/// points gathered in it afterwards, and with the points carried through the sort, `reps` times.
 fn profile_order(n: usize, reps: usize) {
     let mut rng = SplitMix64::new(0x5EED_0001);
     let points: Vec<[f64; 2]> = (0..n).map(|_| [rng.next_f64(), rng.next_f64()]).collect();
     for _ in 0..reps {
         let (start, cpu) = (Instant::now(), cpu_seconds());
         let order = triangle_rs::algorithms::delaunay::order::multiscale_order(&points);
+        let sorted: Vec<[f64; 2]> = order.iter().map(|&v| points[v as usize]).collect();
+        let gathered = (start.elapsed().as_secs_f64(), cpu_seconds() - cpu);
+        drop((order, sorted));
+        let (start, cpu) = (Instant::now(), cpu_seconds());
+        let (order, sorted) =
+            triangle_rs::algorithms::delaunay::order::multiscale_order_and_points(&points, None);
         println!(
-            "order n={n}: wall {:.3} s, cpu {:.3} s (first {:?})",
+            "order n={n}: then gathered wall {:.3} s, cpu {:.3} s; carried wall {:.3} s, \
+             cpu {:.3} s (first {:?}, {:?})",
+            gathered.0,
+            gathered.1,
             start.elapsed().as_secs_f64(),
             cpu_seconds() - cpu,
-            &order[..3]
+            &order[..3],
+            sorted[0]
         );
     }
 }

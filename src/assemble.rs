@@ -7,6 +7,7 @@
 //! segment's marker, else 1 on a boundary, else 0.
 
 use crate::data::{Input, Output, VoronoiOutput};
+use crate::geometry::Point;
 use crate::mesh::raw::{triangle_of, RawMesh, GHOST};
 use crate::mesh::{Mesh, NONE};
 use crate::options::Options;
@@ -34,10 +35,15 @@ pub fn plain_delaunay(options: &Options) -> bool {
 /// Every edge of the mesh's hull has one ghost triangle across it, so with `T` real
 /// triangles and `h` ghosts there are `(3T + h) / 2` edges and `h` boundary edges, which
 /// Triangle counts as segments, and the hull vertices are the ghosts' finite corners.
+///
+/// With `names` (the caller's number of each vertex of the mesh, and the caller's points), the
+/// mesh is numbered otherwise (in insertion order) and the corners are renamed as they are
+/// written: one pass over the corner array for both.
 pub fn delaunay_outputs(
     options: &Options,
     input: &Input<'_>,
     mesh: Mesh,
+    names: Option<(Vec<u32>, Vec<Point>)>,
     mut output: Output,
 ) -> (Output, VoronoiOutput) {
     let n = mesh.vertex_count() as usize;
@@ -50,28 +56,14 @@ pub fn delaunay_outputs(
     });
     let parts = mesh.into_corners_and_points();
     let (mut corners, mut points) = (parts.corners, Some(parts.points));
-    let (mut kept, mut ghosts) = (0, 0);
-    let base = options.first_index();
-    for t in 0..corners.len() / 3 {
-        let slot = &corners[3 * t..3 * t + 3]; // one bounds check for the three
-        let [a, b, c] = [slot[0], slot[1], slot[2]];
-        if a == GHOST || b == GHOST || c == GHOST {
-            ghosts += 1;
-            if let Some(markers) = markers.as_mut() {
-                // A boundary vertex without an input marker gets 1.
-                for v in [a, b, c] {
-                    if v != GHOST && markers[v as usize] == 0 {
-                        markers[v as usize] = 1;
-                    }
-                }
-            }
-            continue;
-        }
-        // Written at or before the slot being read: the compaction runs forward.
-        // (The first index is added in the conversion below, a pass the compiler vectorizes.)
-        corners[kept..kept + 3].copy_from_slice(&[a, b, c]);
-        kept += 3;
-    }
+    let names = names.map(|(names, caller_points)| {
+        drop(points.replace(caller_points));
+        names
+    });
+    let (kept, ghosts) = match names {
+        Some(names) => compact(&mut corners, options, &mut markers, |v| names[v as usize]),
+        None => compact(&mut corners, options, &mut markers, |v| v),
+    };
     corners.truncate(kept);
     let triangle_count = kept / 3;
     output.point_count = n;
@@ -86,13 +78,7 @@ pub fn delaunay_outputs(
     output.triangle_count = triangle_count;
     output.corners = 3;
     if !options.output.no_element_output {
-        // Same size and alignment: collected in place, no copy of the allocation.
-        output.triangles = Some(
-            corners
-                .into_iter()
-                .map(|v| v.wrapping_add_signed(base) as i32)
-                .collect(),
-        );
+        output.triangles = Some(into_i32(corners));
     }
     output.edge_count = (3 * triangle_count + ghosts) / 2;
     output.segment_count = ghosts;
@@ -103,6 +89,51 @@ pub fn delaunay_outputs(
         diagram: None,
     };
     (output, voronoi)
+}
+
+/// Compacts the real triangles' corners to the front of `corners` (in place: written at or
+/// before the slot being read), each corner `v` written as `name(v)` plus the first index, and
+/// marks the boundary vertices (the ghosts' finite corners) without an input marker with 1.
+/// Returns the number of corners kept and the number of ghosts.
+#[inline(always)]
+fn compact(
+    corners: &mut [u32],
+    options: &Options,
+    markers: &mut Option<Vec<i32>>,
+    name: impl Fn(u32) -> u32,
+) -> (usize, usize) {
+    let (mut kept, mut ghosts) = (0, 0);
+    let base = options.first_index();
+    for t in 0..corners.len() / 3 {
+        let slot = &corners[3 * t..3 * t + 3]; // one bounds check for the three
+        let [a, b, c] = [slot[0], slot[1], slot[2]];
+        if a == GHOST || b == GHOST || c == GHOST {
+            ghosts += 1;
+            if let Some(markers) = markers.as_mut() {
+                for v in [a, b, c] {
+                    if v != GHOST && markers[name(v) as usize] == 0 {
+                        markers[name(v) as usize] = 1;
+                    }
+                }
+            }
+            continue;
+        }
+        corners[kept..kept + 3]
+            .copy_from_slice(&[a, b, c].map(|v| name(v).wrapping_add_signed(base)));
+        kept += 3;
+    }
+    (kept, ghosts)
+}
+
+/// The same array as `i32` values (vertex numbers below 2^31 keep their value), without a pass
+/// over it: the allocation changes hands.
+fn into_i32(values: Vec<u32>) -> Vec<i32> {
+    let mut values = std::mem::ManuallyDrop::new(values);
+    let (ptr, len, capacity) = (values.as_mut_ptr(), values.len(), values.capacity());
+    // SAFETY: `u32` and `i32` have the same size and alignment, so the allocation (made for
+    // `capacity` `u32`s by the global allocator, no longer owned by `values`) is one for
+    // `capacity` `i32`s; its first `len` items are initialized, and every bit pattern is an i32.
+    unsafe { Vec::from_raw_parts(ptr.cast::<i32>(), len, capacity) }
 }
 
 /// A finished mesh with the per-vertex and per-edge facts the outputs need.

@@ -51,33 +51,81 @@ fn exponent(x: f64) -> i32 {
     }
 }
 
-/// The exponent of the lowest set bit of a finite non-zero `x`.
-/// A cheap sufficient test that no scaling is needed: from the largest and the smallest nonzero
-/// magnitude alone (finite doubles of one sign order as their bit patterns do: one pass of
-/// integer minima and maxima, which vectorizes). A coordinate's lowest bit is at least its
-/// exponent − 52, so the smallest magnitude bounds every lowest bit from below; when that bound
-/// and the largest exponent are within the limits, so are the exact values [`Scaling::for_points`]
-/// would compute, and it would return no scaling.
-fn within_bounds_by_magnitudes(points: &[Point]) -> bool {
-    const MAGNITUDE: u64 = !(1 << 63);
-    let (mut largest, mut smallest) = (0u64, u64::MAX);
-    for &x in points.as_flattened() {
-        let bits = x.to_bits() & MAGNITUDE;
-        largest = largest.max(bits);
-        // Less one, a zero wraps to the largest pattern and leaves the minimum alone.
-        smallest = smallest.min(bits.wrapping_sub(1));
-    }
-    if largest == 0 {
-        return false; // all zero: the exact pass says so
-    }
-    let smallest = smallest.wrapping_add(1);
-    let (hi, lo) = (
-        exponent(f64::from_bits(largest)),
-        exponent(f64::from_bits(smallest)) - 52,
-    );
-    hi <= LARGEST_SCALED_EXPONENT && lo >= FINEST_SCALED_BIT && hi - lo <= LARGEST_BIT_SPAN
+/// The largest and the smallest nonzero magnitude of a set of coordinates, gathered one value
+/// at a time (by the pass that copies the input, so that the screen costs no pass of its own):
+/// a cheap sufficient test that no scaling is needed ([`Magnitudes::within_bounds`]), and
+/// whether every value is finite. Finite doubles of one sign order as their bit patterns do,
+/// so both are integer minima and maxima of the magnitudes' bits (infinities and NaNs have
+/// patterns above every finite one).
+#[derive(Clone, Copy, Debug)]
+pub struct Magnitudes {
+    largest: u64,
+    /// The smallest magnitude less one: a zero wraps to the largest pattern and leaves the
+    /// minimum alone.
+    smallest_less_one: u64,
 }
 
+impl Default for Magnitudes {
+    fn default() -> Self {
+        Magnitudes {
+            largest: 0,
+            smallest_less_one: u64::MAX,
+        }
+    }
+}
+
+impl Magnitudes {
+    const MAGNITUDE: u64 = !(1 << 63);
+
+    /// The magnitudes of `values`.
+    pub fn of(values: &[f64]) -> Magnitudes {
+        let mut m = Magnitudes::default();
+        for &x in values {
+            m.add(x);
+        }
+        m
+    }
+
+    /// Takes `x` into account.
+    #[inline(always)]
+    pub fn add(&mut self, x: f64) {
+        let bits = x.to_bits() & Self::MAGNITUDE;
+        self.largest = self.largest.max(bits);
+        self.smallest_less_one = self.smallest_less_one.min(bits.wrapping_sub(1));
+    }
+
+    /// The magnitudes of both sets together.
+    pub fn merge(self, other: Magnitudes) -> Magnitudes {
+        Magnitudes {
+            largest: self.largest.max(other.largest),
+            smallest_less_one: self.smallest_less_one.min(other.smallest_less_one),
+        }
+    }
+
+    /// Whether every value is finite.
+    pub fn all_finite(&self) -> bool {
+        self.largest < f64::INFINITY.to_bits()
+    }
+
+    /// A cheap sufficient test that no scaling is needed, from the largest and the smallest
+    /// nonzero magnitude alone (of finite values). A coordinate's lowest bit is at least its
+    /// exponent − 52, so the smallest magnitude bounds every lowest bit from below; when that
+    /// bound and the largest exponent are within the limits, so are the exact values
+    /// [`Scaling::for_points`] would compute, and it would return no scaling.
+    fn within_bounds(&self) -> bool {
+        if self.largest == 0 {
+            return false; // all zero: the exact pass says so
+        }
+        let smallest = self.smallest_less_one.wrapping_add(1);
+        let (hi, lo) = (
+            exponent(f64::from_bits(self.largest)),
+            exponent(f64::from_bits(smallest)) - 52,
+        );
+        hi <= LARGEST_SCALED_EXPONENT && lo >= FINEST_SCALED_BIT && hi - lo <= LARGEST_BIT_SPAN
+    }
+}
+
+/// The exponent of the lowest set bit of a finite non-zero `x`.
 fn lowest_bit(x: f64) -> i32 {
     let bits = x.to_bits();
     let biased = ((bits >> 52) & 0x7ff) as i32;
@@ -135,7 +183,12 @@ pub struct Scaling {
 impl Scaling {
     /// The scaling for the points (x, y pairs), or the error that no scaling makes them safe.
     pub fn for_points(points: &[Point]) -> Result<Scaling, Error> {
-        if within_bounds_by_magnitudes(points) {
+        Scaling::for_screened_points(points, Magnitudes::of(points.as_flattened()))
+    }
+
+    /// [`Scaling::for_points`] for finite points whose [`Magnitudes`] are known already.
+    pub fn for_screened_points(points: &[Point], magnitudes: Magnitudes) -> Result<Scaling, Error> {
+        if magnitudes.within_bounds() {
             return Ok(Scaling::default());
         }
         // The largest magnitude's exponent and the finest bit, in one pass without branches on

@@ -5,7 +5,7 @@ use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
 
 use crate::algorithms::constrain::Constrainer;
-use crate::algorithms::delaunay::{self, merge, order, Inserter, Triangulation};
+use crate::algorithms::delaunay::{self, merge, order, InInsertionOrder, Inserter, Triangulation};
 use crate::algorithms::domain::{carve, Domain};
 use crate::algorithms::reconstruct::reconstruct;
 use crate::algorithms::refine::{refine, Quality};
@@ -25,24 +25,43 @@ use checks::{check_indices_and_seeds, check_mesh, check_supported, checked_point
 /// Seed of the randomized insertion order (`i`): fixed, so results are reproducible.
 const BRIO_SEED: u64 = 0x7269_616E_676C_6521;
 
-fn delaunay_with<P: Predicates>(options: &Options, mut points: Vec<Point>) -> Triangulation {
-    match options.algorithm {
-        Algorithm::Incremental => {
-            let order = order::brio_order(&points, BRIO_SEED);
-            delaunay::triangulate::<P>(points, &order)
-        }
-        Algorithm::Default | Algorithm::Sweepline => {
-            let two_cores = std::thread::available_parallelism().is_ok_and(|n| n.get() >= 2);
-            if two_cores && points.len() >= merge::PARALLEL_THRESHOLD {
-                match merge::triangulate_two_halves::<P>(points) {
-                    Ok(triangulation) => return triangulation,
-                    Err(given_back) => points = given_back,
-                }
-            }
-            let order = order::multiscale_order(&points);
-            delaunay::triangulate::<P>(points, &order)
+/// The Delaunay triangulation of the points, in the caller's numbers; with `in_insertion_order`,
+/// when it is built on one thread, numbered in insertion order with the caller's numbers and
+/// points beside it (the plain outputs rename as they write).
+fn delaunay_with<P: Predicates>(
+    options: &Options,
+    points: Vec<Point>,
+    in_insertion_order: bool,
+) -> Delaunay {
+    let kind = match options.algorithm {
+        Algorithm::Incremental => order::OrderKind::Brio(BRIO_SEED),
+        Algorithm::Default | Algorithm::Sweepline => order::OrderKind::Multiscale,
+    };
+    let mut points = points;
+    let two_cores = std::thread::available_parallelism().is_ok_and(|n| n.get() >= 2);
+    if kind == order::OrderKind::Multiscale
+        && two_cores
+        && points.len() >= merge::PARALLEL_THRESHOLD
+    {
+        match merge::triangulate_two_halves::<P>(points) {
+            Ok(triangulation) => return Delaunay::Renamed(triangulation),
+            Err(given_back) => points = given_back,
         }
     }
+    let built = delaunay::triangulate_ordered::<P>(delaunay::order_in_room(&points, kind, 0));
+    if in_insertion_order {
+        Delaunay::InInsertionOrder(built, points)
+    } else {
+        Delaunay::Renamed(built.into_caller_numbers(points))
+    }
+}
+
+/// What [`delaunay_with`] gives.
+enum Delaunay {
+    /// Numbered as the caller's points.
+    Renamed(Triangulation),
+    /// Numbered in insertion order, with the caller's points.
+    InInsertionOrder(InInsertionOrder, Vec<Point>),
 }
 
 struct ScaledInput {
@@ -57,8 +76,10 @@ impl ScaledInput {
     fn new(scaling: Scaling, options: &Options, input: &Input<'_>, mut points: Vec<Point>) -> Self {
         let mut options = options.clone();
         options.max_area = options.max_area.map(|a| scaling.scale_area(a));
+        // `limit` bounds the hole and region points alone: without them no scan is needed.
         let mut limit: f64 = 1.0;
-        if scaling.is_identity() {
+        let has_seeds = !(input.holes.is_empty() && input.regions.is_empty());
+        if scaling.is_identity() && has_seeds {
             // Finite coordinates: a plain comparison finds the largest magnitude.
             for &x in points.as_flattened() {
                 let magnitude = x.abs();
@@ -66,7 +87,7 @@ impl ScaledInput {
                     limit = magnitude;
                 }
             }
-        } else {
+        } else if !scaling.is_identity() {
             for p in &mut points {
                 *p = p.map(|x| scaling.scale(x));
                 limit = limit.max(p[0].abs()).max(p[1].abs());
@@ -115,9 +136,9 @@ pub fn triangulate(
     hooks: &Hooks<'_>,
 ) -> Result<(Output, VoronoiOutput), Error> {
     check_supported(options)?;
-    let points = checked_points(input)?;
+    let (points, magnitudes) = checked_points(input)?;
     check_indices_and_seeds(options, input)?;
-    let scaling = Scaling::for_points(&points)?;
+    let scaling = Scaling::for_screened_points(&points, magnitudes)?;
     let mut scaled = ScaledInput::new(scaling, options, input, points);
     let points = std::mem::take(&mut scaled.points);
     let options = &scaled.options;
@@ -163,37 +184,44 @@ fn run<P: Predicates>(
     let base = options.first_index();
     hooks.report(Phase::Delaunay, 0, n as u64);
     // The starting mesh: the given triangles (`r`), or the Delaunay triangulation of the points.
-    let (mesh, duplicate_of) = if options.refine {
-        let mesh = reconstruct::<P>(points, input.triangles, input.corners, base)?;
-        (mesh, vec![NONE; n])
-    } else {
-        let Triangulation { mesh, duplicate_of } = delaunay_with::<P>(options, points);
-        for (v, &u) in duplicate_of.iter().enumerate() {
-            if u != NONE {
-                // The caller's coordinates (`input.points` are not scaled).
-                output.warnings.push(format!(
-                    "A duplicate vertex at ({}, {}) appeared and was ignored (vertex {} duplicates vertex {}).",
-                    input.points[2 * v],
-                    input.points[2 * v + 1],
-                    v as i32 + base,
-                    u as i32 + base
-                ));
-            }
-        }
-        (mesh, duplicate_of)
-    };
-    hooks.report(Phase::Delaunay, n as u64, n as u64);
     // A plain Delaunay triangulation in the caller's units: its outputs are built from the mesh
     // in place (scaled coordinates go through `write_outputs`, which gives them back unscaled).
-    if !options.refine
-        && scaling.is_identity()
-        && assemble::plain_delaunay(options)
-        && mesh.triangle_count() > 0
-    {
+    let plain = !options.refine && scaling.is_identity() && assemble::plain_delaunay(options);
+    let (mut mesh, duplicates, names) = if options.refine {
+        let mesh = reconstruct::<P>(points, input.triangles, input.corners, base)?;
+        (mesh, Vec::new(), None)
+    } else {
+        let (Triangulation { mesh, duplicates }, names) =
+            match delaunay_with::<P>(options, points, plain) {
+                Delaunay::Renamed(triangulation) => (triangulation, None),
+                Delaunay::InInsertionOrder(built, points) => {
+                    (built.triangulation, Some((built.names, points)))
+                }
+            };
+        for &(v, u) in &duplicates {
+            let v = v as usize;
+            // The caller's coordinates (`input.points` are not scaled).
+            output.warnings.push(format!(
+                "A duplicate vertex at ({}, {}) appeared and was ignored (vertex {} duplicates vertex {}).",
+                input.points[2 * v],
+                input.points[2 * v + 1],
+                v as i32 + base,
+                u as i32 + base
+            ));
+        }
+        (mesh, duplicates, names)
+    };
+    hooks.report(Phase::Delaunay, n as u64, n as u64);
+    if plain && mesh.triangle_count() > 0 {
         let slots = mesh.triangle_count();
         return Ok(output_phase(hooks, slots, || {
-            assemble::delaunay_outputs(options, input, mesh, output)
+            assemble::delaunay_outputs(options, input, mesh, names, output)
         }));
+    }
+    if let Some((names, points)) = names {
+        // No triangle: the general path, in the caller's numbers.
+        mesh.rename_vertices(|v| VertexId::new(names[v.index()]));
+        drop(mesh.replace_points(points));
     }
     let k = input.point_attribute_count;
     let mut meshed = Meshed {
@@ -211,6 +239,11 @@ fn run<P: Predicates>(
         let mut cdt = Constrainer::new(Inserter::<P>::new(std::mem::take(&mut meshed.mesh)));
         cdt.split_segments = options.split_segments;
         if options.pslg {
+            // Per vertex: the copy in the mesh of a duplicate, NONE for the others.
+            let mut duplicate_of = vec![NONE; n];
+            for &(v, u) in &duplicates {
+                duplicate_of[v as usize] = u;
+            }
             insert_segments(
                 &mut cdt,
                 input,
@@ -573,4 +606,69 @@ fn unscale_outputs(
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::options::SwitchSource;
+
+    /// The plain outputs (renamed from insertion order as they are written) are the general
+    /// path's: triangles, hull markers, counts and duplicate warnings, with copies of points
+    /// before and after the first one, for both insertion orders and both first indices.
+    #[test]
+    fn plain_outputs_match_the_general_path() {
+        let mut state = 17u64;
+        let mut points: Vec<f64> = (0..2 * 3000)
+            .map(|_| (order::splitmix64(&mut state) % 1_000_000) as f64 * 1e-6)
+            .collect();
+        // 100, 7 and 8 at one position (the copy in the middle inserted first, or not).
+        for (from, to) in [(10, 2999), (2500, 3), (100, 7), (7, 8)] {
+            points[2 * to] = points[2 * from];
+            points[2 * to + 1] = points[2 * from + 1];
+        }
+        let input = Input {
+            points: &points,
+            ..Input::default()
+        };
+        let canonical = |output: &Output| {
+            let mut triangles: Vec<[i32; 3]> = output
+                .triangles
+                .as_ref()
+                .expect("triangles")
+                .chunks_exact(3)
+                .map(|t| {
+                    let k = (0..3).min_by_key(|&i| t[i]).unwrap();
+                    [t[k], t[(k + 1) % 3], t[(k + 2) % 3]]
+                })
+                .collect();
+            triangles.sort_unstable();
+            triangles
+        };
+        for switches in ["Q", "Qz", "Qi", "Qzi"] {
+            let run = |switches: &str| {
+                let options = Options::parse(switches, SwitchSource::Library).expect("switches");
+                triangulate(&options, &input, &Hooks::default())
+                    .expect("triangulated")
+                    .0
+            };
+            let plain = run(switches);
+            // Edges are not among the plain outputs: this run takes the general path.
+            let general = run(&format!("{switches}e"));
+            assert_eq!(canonical(&plain), canonical(&general), "{switches}");
+            assert_eq!(plain.point_markers, general.point_markers, "{switches}");
+            assert_eq!(plain.points, general.points, "{switches}");
+            assert_eq!(plain.warnings, general.warnings, "{switches}");
+            assert_eq!(plain.warnings.len(), 4, "{switches}");
+            assert_eq!(
+                (plain.triangle_count, plain.edge_count, plain.segment_count),
+                (
+                    general.triangle_count,
+                    general.edge_count,
+                    general.segment_count
+                ),
+                "{switches}"
+            );
+        }
+    }
 }

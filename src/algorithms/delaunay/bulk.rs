@@ -13,36 +13,38 @@
 
 use super::{location_in_triangle, Location};
 use crate::geometry::{Point, Predicates};
-use crate::mesh::{EdgeId, Ghosts, Mesh, TriangleId, VertexId, GHOST, NONE};
+use crate::mesh::{EdgeId, Ghosts, Mesh, TriangleId, VertexId, GHOST};
 
-/// Triangulates `points` inserting them in index order; returns the mesh and, per vertex, the
-/// vertex it duplicates (or [`NONE`]). The mesh's arrays have room for `capacity` triangle
+/// Triangulates `points` inserting them in index order; returns the mesh and the vertices left
+/// out as duplicates, by increasing vertex: (vertex, the vertex at its position in the mesh). The mesh's arrays have room for `capacity` triangle
 /// slots (at least the `2n + 2` that the build may use): a caller that appends more triangles
-/// later asks for them here, so that no array is reallocated (and copied) on the way.
+/// later asks for them here, so that no array is reallocated (and copied) on the way. The twin
+/// array is `twins`' allocation (see [`Mesh::with_capacity_reusing`]).
 pub(super) fn triangulate_in_order<P: Predicates>(
     points: Vec<Point>,
     capacity: usize,
-) -> (Mesh, Vec<u32>) {
+    twins: Vec<u32>,
+) -> (Mesh, Vec<(u32, u32)>) {
     let n = points.len() as u32;
-    let mut duplicate_of = vec![NONE; n as usize];
+    let mut duplicates = Vec::new();
     let capacity = capacity.max(2 * points.len() + 2);
-    let mut mesh = Mesh::with_capacity(points, capacity);
+    let mut mesh = Mesh::with_capacity_reusing(points, capacity, twins);
     // Seed triangle: the first point, the first point distinct from it, and the first point not
     // collinear with those two.
     if n == 0 {
-        return (mesh, duplicate_of);
+        return (mesh, duplicates);
     }
     let v = VertexId::new;
     let pa = mesh.point(v(0));
     let Some(b) = (1..n).map(v).find(|&u| mesh.point(u) != pa) else {
-        return (mesh, duplicate_of);
+        return (mesh, duplicates);
     };
     let pb = mesh.point(b);
     let Some(c) = (b.raw() + 1..n)
         .map(v)
         .find(|&u| P::orient2d(pa, pb, mesh.point(u)) != 0.0)
     else {
-        return (mesh, duplicate_of);
+        return (mesh, duplicates);
     };
     if P::orient2d(pa, pb, mesh.point(c)) > 0.0 {
         mesh.init_triangle(v(0), b, c);
@@ -60,10 +62,10 @@ pub(super) fn triangulate_in_order<P: Predicates>(
             continue;
         }
         if let Err(w) = builder.insert(u) {
-            duplicate_of[u.index()] = w.raw();
+            duplicates.push((u.raw(), w.raw()));
         }
     }
-    (builder.mesh, duplicate_of)
+    (builder.mesh, duplicates)
 }
 
 /// The slot after and before each slot of a triangle.

@@ -13,10 +13,10 @@
 //! chains have as many edges as the zip makes triangles, and two new ghosts close the hull at the
 //! tangents.
 
-use super::{triangulate_in_order, Triangulation};
-use crate::algorithms::delaunay::order::multiscale_order;
+use super::order::OrderKind;
+use super::{order_in_room, triangulate_ordered, InInsertionOrder, Triangulation};
 use crate::geometry::{Point, Predicates};
-use crate::mesh::{EdgeId, Ghosts, Lawson, Mesh, Quad, TriangleId, VertexId, GHOST, NONE};
+use crate::mesh::{EdgeId, Ghosts, Lawson, Mesh, Quad, TriangleId, VertexId, GHOST};
 
 /// Below this many points one thread is faster than two.
 pub const PARALLEL_THRESHOLD: usize = 20_000;
@@ -34,24 +34,29 @@ fn triangulate_half<P: Predicates>(
     ids: Vec<u32>,
     capacity: usize,
 ) -> Option<Half> {
-    let order = multiscale_order(&local_points);
-    let sorted: Vec<Point> = order.iter().map(|&i| local_points[i as usize]).collect();
+    let mut ordered = order_in_room(&local_points, OrderKind::Multiscale, capacity);
     drop(local_points);
-    // The input id of each vertex of the half, in insertion order.
-    let global: Vec<u32> = order.iter().map(|&i| ids[i as usize]).collect();
-    drop((order, ids));
-    let (mut mesh, duplicates) = triangulate_in_order::<P>(sorted, capacity);
+    // Numbered by input id (increasing with the local index, so first copies stay first).
+    for v in ordered.order.iter_mut() {
+        *v = ids[*v as usize];
+    }
+    drop(ids);
+    let InInsertionOrder {
+        triangulation,
+        names,
+    } = triangulate_ordered::<P>(ordered);
+    let Triangulation {
+        mut mesh,
+        duplicates,
+    } = triangulation;
     if mesh.triangle_count() == 0 {
         return None;
     }
-    mesh.rename_vertices(|v| VertexId::new(global[v.index()]));
-    let duplicate_of = duplicates
-        .iter()
-        .enumerate()
-        .filter(|(_, &u)| u != NONE)
-        .map(|(i, &u)| (global[i], global[u as usize]))
-        .collect();
-    Some(Half { mesh, duplicate_of })
+    mesh.rename_vertices(|v| VertexId::new(names[v.index()]));
+    Some(Half {
+        mesh,
+        duplicate_of: duplicates,
+    })
 }
 
 /// The points on one side of the split point `split` (lexicographically; its copies on the
@@ -115,15 +120,18 @@ pub fn triangulate_two_halves<P: Predicates>(
     let (Some(l), Some(mut r)) = (l, r) else {
         return Err(points);
     };
-    let mut duplicate_of = vec![NONE; n];
-    for &(v, u) in l.duplicate_of.iter().chain(&r.duplicate_of) {
-        duplicate_of[v as usize] = u;
-    }
+    let mut duplicates: Vec<(u32, u32)> = l
+        .duplicate_of
+        .iter()
+        .chain(&r.duplicate_of)
+        .copied()
+        .collect();
+    duplicates.sort_unstable();
     // One mesh: the right half's triangles after the left half's.
     let right_start = TriangleId::new(l.mesh.triangle_count());
     let mut mesh = l.mesh;
     drop(mesh.replace_points(points));
-    mesh.append(std::mem::take(&mut r.mesh));
+    mesh.append_on_two_threads(std::mem::take(&mut r.mesh));
     let mut merger = Merger::<P> {
         mesh,
         _p: Default::default(),
@@ -131,7 +139,7 @@ pub fn triangulate_two_halves<P: Predicates>(
     merger.merge(right_start);
     let mut triangulation = Triangulation {
         mesh: merger.mesh,
-        duplicate_of,
+        duplicates,
     };
     triangulation.keep_first_copies();
     Ok(triangulation)
@@ -458,10 +466,11 @@ mod tests {
         }
         let real = m.triangle_count() as usize - ghosts;
         assert_eq!(real, 2 * distinct - 2 - ghosts);
-        assert_eq!(
-            t.duplicate_of.iter().filter(|&&u| u != NONE).count(),
-            t.duplicate_of.len() - distinct
-        );
+        assert_eq!(t.duplicates.len(), m.vertex_count() as usize - distinct);
+        for &(v, u) in &t.duplicates {
+            assert_eq!(m.point(VertexId::new(v)), m.point(VertexId::new(u)));
+            assert!(u < v, "the first copy is the one in the mesh");
+        }
     }
 
     fn uniform(n: usize, seed: u64) -> Vec<Point> {

@@ -64,9 +64,11 @@ fn location_in_triangle(
 #[derive(Clone, Debug, Default)]
 pub struct Triangulation {
     pub mesh: Mesh,
-    /// Per input vertex: [`NONE`] if it is a vertex of the triangulation, else the vertex at the
-    /// same position that was inserted instead (duplicates are left out).
-    pub duplicate_of: Vec<u32>,
+    /// The input vertices left out as duplicates, by increasing vertex: (vertex, the vertex at
+    /// the same position that is in the triangulation). A list rather than one entry per
+    /// vertex: duplicates are rare, and an array as long as the input costs a pass and its
+    /// fresh pages.
+    pub duplicates: Vec<(u32, u32)>,
 }
 
 impl Triangulation {
@@ -75,14 +77,23 @@ impl Triangulation {
         self.mesh.triangle_count() == 0
     }
 
+    /// Per input vertex: [`NONE`] if it is a vertex of the triangulation, else the vertex at the
+    /// same position that was inserted instead.
+    pub fn duplicate_of(&self) -> Vec<u32> {
+        let mut duplicate_of = vec![NONE; self.mesh.vertex_count() as usize];
+        for &(v, u) in &self.duplicates {
+            duplicate_of[v as usize] = u;
+        }
+        duplicate_of
+    }
+
     /// Makes the first copy (smallest index) of every duplicated point the one in the mesh, as
     /// Triangle's documentation of `j` says, whichever copy the insertion order met first: the
     /// copies have the same coordinates, so the survivor's id is swapped for the first copy's.
     pub fn keep_first_copies(&mut self) {
         let mut first_copy: std::collections::HashMap<u32, u32> = std::collections::HashMap::new();
-        for (v, &u) in self.duplicate_of.iter().enumerate() {
-            let v = v as u32;
-            if u != NONE && v < u && first_copy.get(&u).is_none_or(|&w| v < w) {
+        for &(v, u) in &self.duplicates {
+            if v < u && first_copy.get(&u).is_none_or(|&w| v < w) {
                 first_copy.insert(u, v);
             }
         }
@@ -95,14 +106,17 @@ impl Triangulation {
             self.mesh
                 .swap_vertex_edges(VertexId::new(u), VertexId::new(w));
         }
-        for (v, u) in self.duplicate_of.iter_mut().enumerate() {
+        // The first copy `w` of survivor `u` takes its place: `u` becomes a duplicate of `w`,
+        // and so does every other copy.
+        for (v, u) in self.duplicates.iter_mut() {
             if let Some(&w) = first_copy.get(u) {
-                *u = if v as u32 == w { NONE } else { w };
+                if *v == w {
+                    *v = *u;
+                }
+                *u = w;
             }
         }
-        for (&u, &w) in &first_copy {
-            self.duplicate_of[u as usize] = w;
-        }
+        self.duplicates.sort_unstable();
     }
 }
 
@@ -369,18 +383,147 @@ impl<const TRACKED: bool> Lawson for AroundVertex<'_, TRACKED> {
 /// caller's indices at the end.
 pub fn triangulate<P: Predicates>(points: Vec<Point>, order: &[u32]) -> Triangulation {
     let sorted: Vec<Point> = order.iter().map(|&v| points[v as usize]).collect();
-    let (mut mesh, sorted_duplicate_of) = triangulate_in_order::<P>(sorted, 0);
-    mesh.rename_vertices(|v| VertexId::new(order[v.index()]));
-    drop(mesh.replace_points(points));
-    let mut duplicate_of = vec![NONE; order.len()];
-    for (i, &u) in sorted_duplicate_of.iter().enumerate() {
-        if u != NONE {
-            duplicate_of[order[i] as usize] = order[u as usize];
+    triangulate_sorted::<P>(points, order.to_vec(), sorted)
+}
+
+/// [`triangulate`] given the points in insertion order as well (`sorted[i]` is
+/// `points[order[i]]`), as [`order::multiscale_order_and_points`] gives them.
+pub fn triangulate_sorted<P: Predicates>(
+    points: Vec<Point>,
+    order: Vec<u32>,
+    sorted: Vec<Point>,
+) -> Triangulation {
+    triangulate_in_insertion_order::<P>(order, sorted).into_caller_numbers(points)
+}
+
+/// A triangulation whose vertices are numbered in insertion order, with the caller's number of
+/// each: the outputs of a plain triangulation rename the corners as they write them, which
+/// spares a pass over the mesh.
+pub struct InInsertionOrder {
+    /// The mesh over the points in insertion order; `duplicates` in the caller's numbers.
+    pub triangulation: Triangulation,
+    /// The caller's number of each vertex of the mesh: the insertion order, with each
+    /// duplicated point's first copy (smallest number) standing for the copy that was inserted,
+    /// as [`Triangulation::keep_first_copies`] makes it.
+    pub names: Vec<u32>,
+}
+
+impl InInsertionOrder {
+    /// The triangulation in the caller's numbers, over the caller's `points`.
+    pub fn into_caller_numbers(self, points: Vec<Point>) -> Triangulation {
+        let InInsertionOrder {
+            mut triangulation,
+            names,
+        } = self;
+        let mesh = &mut triangulation.mesh;
+        mesh.rename_vertices(|v| VertexId::new(names[v.index()]));
+        drop(mesh.replace_points(points));
+        triangulation
+    }
+}
+
+/// Points in insertion order ([`order_in_room`]), with the allocation of the twin array to be.
+pub struct Ordered {
+    /// The caller's number of each point, in insertion order.
+    pub order: Vec<u32>,
+    /// The points in insertion order.
+    pub sorted: Vec<Point>,
+    twins: Vec<u32>,
+    capacity: usize,
+}
+
+/// Orders `points` (`kind`) for a mesh with room for `capacity` triangle slots (at least the
+/// `2n + 2` the build may use): the order's sort works in the room of the mesh's twin array,
+/// which [`triangulate_ordered`] then gives the mesh. The pages the sort touches are pages the
+/// twins fill later, where separate buffers would be fresh pages twice (a fresh page costs
+/// microseconds).
+pub fn order_in_room(points: &[Point], kind: order::OrderKind, capacity: usize) -> Ordered {
+    let n = points.len();
+    let capacity = capacity.max(2 * n + 2);
+    let mut twins: Vec<u32> = Vec::with_capacity(3 * capacity);
+    let (order, sorted) = kind.order_and_points(points, Some(words_in_room_of(&mut twins, 2 * n)));
+    Ordered {
+        order,
+        sorted,
+        twins,
+        capacity,
+    }
+}
+
+/// Triangulates ordered points, inserting them in their order (see [`InInsertionOrder`]).
+pub fn triangulate_ordered<P: Predicates>(ordered: Ordered) -> InInsertionOrder {
+    let Ordered {
+        order,
+        sorted,
+        twins,
+        capacity,
+    } = ordered;
+    triangulate_with_twins::<P>(order, sorted, capacity, twins)
+}
+
+/// Up to `count` words (zeroed) in the spare room of `v` (fewer, or none, when it has less).
+fn words_in_room_of(v: &mut Vec<u32>, count: usize) -> &mut [u64] {
+    let room = v.spare_capacity_mut();
+    // SAFETY: a `MaybeUninit<u64>` may hold any bits, so viewing the aligned middle of the room
+    // as such is sound; `align_to_mut` keeps the alignment of `u64`.
+    let (_, words, _) = unsafe { room.align_to_mut::<std::mem::MaybeUninit<u64>>() };
+    let count = count.min(words.len());
+    let words = &mut words[..count];
+    for w in words.iter_mut() {
+        w.write(0);
+    }
+    // SAFETY: every item was just initialized, and `MaybeUninit<u64>` has the layout of `u64`.
+    unsafe { &mut *(words as *mut [std::mem::MaybeUninit<u64>] as *mut [u64]) }
+}
+
+/// Triangulates the points `sorted`, inserting them in their order, `order` giving the
+/// caller's number of each (`sorted[i]` is the caller's point `order[i]`).
+pub fn triangulate_in_insertion_order<P: Predicates>(
+    order: Vec<u32>,
+    sorted: Vec<Point>,
+) -> InInsertionOrder {
+    triangulate_with_twins::<P>(order, sorted, 0, Vec::new())
+}
+
+/// [`triangulate_in_insertion_order`] with room for `capacity` triangle slots, the twin array
+/// in `twins`' allocation.
+fn triangulate_with_twins<P: Predicates>(
+    order: Vec<u32>,
+    sorted: Vec<Point>,
+    capacity: usize,
+    twins: Vec<u32>,
+) -> InInsertionOrder {
+    debug_assert_eq!(sorted.len(), order.len());
+    let (mesh, sorted_duplicates) = triangulate_in_order::<P>(sorted, capacity, twins);
+    let mut names = order;
+    // The first copy of each inserted point (by the caller's numbers) takes its place.
+    let mut first_copy: std::collections::HashMap<u32, u32> = std::collections::HashMap::new();
+    for &(v, u) in &sorted_duplicates {
+        let (copy, kept) = (names[v as usize], names[u as usize]);
+        if copy < kept && first_copy.get(&u).is_none_or(|&w| copy < w) {
+            first_copy.insert(u, copy);
         }
     }
-    let mut triangulation = Triangulation { mesh, duplicate_of };
-    triangulation.keep_first_copies();
-    triangulation
+    let mut duplicates: Vec<(u32, u32)> = sorted_duplicates
+        .iter()
+        .map(|&(v, u)| {
+            let (copy, kept) = (names[v as usize], names[u as usize]);
+            match first_copy.get(&u) {
+                // The inserted copy becomes a duplicate of the first, which takes its place.
+                Some(&w) if w == copy => (kept, w),
+                Some(&w) => (copy, w),
+                None => (copy, kept),
+            }
+        })
+        .collect();
+    duplicates.sort_unstable();
+    for (&u, &w) in &first_copy {
+        names[u as usize] = w;
+    }
+    InInsertionOrder {
+        triangulation: Triangulation { mesh, duplicates },
+        names,
+    }
 }
 
 #[cfg(test)]
@@ -458,9 +601,10 @@ mod tests {
         let t = triangulate::<Exact>(pts, &ord);
         check_delaunay(&t);
         assert_eq!(t.mesh.real_triangles().count(), 2 * 81);
-        assert_eq!(t.duplicate_of[100], 33);
-        assert_eq!(t.duplicate_of[101], 0);
-        assert!(t.duplicate_of[33] == NONE && t.duplicate_of[0] == NONE);
+        let duplicate_of = t.duplicate_of();
+        assert_eq!(duplicate_of[100], 33);
+        assert_eq!(duplicate_of[101], 0);
+        assert!(duplicate_of[33] == NONE && duplicate_of[0] == NONE);
         assert!(t.mesh.raw_corners().contains(&33) && !t.mesh.raw_corners().contains(&100));
         let line: Vec<Point> = (0..10).map(|i| [i as f64, 2.0 * i as f64]).collect();
         let ord = order::hilbert_order(&line);

@@ -174,14 +174,58 @@ fn radix_sort_by_high_half(mut keys: Vec<u64>) -> Vec<u64> {
     keys
 }
 
+/// Seed of the default order's rounds.
+const MULTISCALE_SEED: u64 = 0x6D75_6C74_6973_6361;
+
 /// The default insertion order: rounds growing eightfold, each in Hilbert order.
 pub fn multiscale_order(points: &[Point]) -> Vec<u32> {
-    rounds_in_hilbert_order(points, 0x6D75_6C74_6973_6361, 3)
+    rounds_in_hilbert_order(points, MULTISCALE_SEED, 3)
 }
 
 /// The order of `i`: a biased randomized insertion order, rounds doubling in size.
 pub fn brio_order(points: &[Point], seed: u64) -> Vec<u32> {
     rounds_in_hilbert_order(points, seed, 1)
+}
+
+/// [`multiscale_order`] and the points in that order; the sort works in `room` when it is given
+/// with room for two words per point (see [`OrderKind::order_and_points`]).
+pub fn multiscale_order_and_points(
+    points: &[Point],
+    room: Option<&mut [u64]>,
+) -> (Vec<u32>, Vec<Point>) {
+    rounds_in_hilbert_order_and_points(points, MULTISCALE_SEED, 3, room)
+}
+
+/// [`brio_order`] and the points in that order (`room` as for [`multiscale_order_and_points`]).
+pub fn brio_order_and_points(
+    points: &[Point],
+    seed: u64,
+    room: Option<&mut [u64]>,
+) -> (Vec<u32>, Vec<Point>) {
+    rounds_in_hilbert_order_and_points(points, seed, 1, room)
+}
+
+/// Which insertion order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OrderKind {
+    /// [`multiscale_order`], the default.
+    Multiscale,
+    /// [`brio_order`] with this seed (`i`).
+    Brio(u64),
+}
+
+impl OrderKind {
+    /// The order and the points in it (`room` as for [`multiscale_order_and_points`]).
+    pub fn order_and_points(
+        self,
+        points: &[Point],
+        room: Option<&mut [u64]>,
+    ) -> (Vec<u32>, Vec<Point>) {
+        match self {
+            OrderKind::Multiscale => multiscale_order_and_points(points, room),
+            OrderKind::Brio(seed) => brio_order_and_points(points, seed, room),
+        }
+    }
 }
 
 /// Rounds of the orders: more than enough for any point count (the first rounds stay empty).
@@ -208,74 +252,199 @@ fn next_round(state: &mut u64, growth_bits: u32) -> u32 {
 /// stable). Against three radix passes over all the words and a pass by round, this moves the
 /// words through memory once.
 fn rounds_in_hilbert_order(points: &[Point], seed: u64, growth_bits: u32) -> Vec<u32> {
-    const INDEX_BITS: u32 = 27;
-    const TOP_BITS: u32 = 8;
     if points.len() >= 1 << INDEX_BITS {
         return rounds_in_hilbert_order_by_passes(points, seed, growth_bits);
     }
+    let n = points.len();
+    let mut room = vec![0u64; 2 * n];
+    sorted_words::<false>(points, seed, growth_bits, &mut room);
+    let index_mask = (1u64 << INDEX_BITS) - 1;
+    room[n..].iter().map(|&w| (w & index_mask) as u32).collect()
+}
+
+/// [`rounds_in_hilbert_order`] and the points in that order. The points travel with their
+/// words through the scatter by bucket (read in input order, written where their bucket
+/// lies) and the sorts of the buckets (in the cache), instead of being gathered afterwards in
+/// the order's random sequence of input positions, whose reads miss the cache and the TLB.
+///
+/// The sort works in `room` when it is given with room for two words per point (its contents
+/// are overwritten), else in an allocation of its own.
+fn rounds_in_hilbert_order_and_points(
+    points: &[Point],
+    seed: u64,
+    growth_bits: u32,
+    room: Option<&mut [u64]>,
+) -> (Vec<u32>, Vec<Point>) {
+    let n = points.len();
+    if n >= 1 << INDEX_BITS {
+        let order = rounds_in_hilbert_order_by_passes(points, seed, growth_bits);
+        let sorted = order.iter().map(|&v| points[v as usize]).collect();
+        return (order, sorted);
+    }
+    let mut own: Vec<u64>;
+    let room = match room {
+        Some(room) if room.len() >= 2 * n => room,
+        _ => {
+            own = vec![0u64; 2 * n];
+            &mut own[..]
+        }
+    };
+    let sorted_points = sorted_words::<true>(points, seed, growth_bits, room);
+    let index_mask = (1u64 << INDEX_BITS) - 1;
+    let order = room[n..2 * n]
+        .iter()
+        .map(|&w| (w & index_mask) as u32)
+        .collect();
+    (order, sorted_points)
+}
+
+/// Bits of a point's index in the words of [`sorted_words`].
+const INDEX_BITS: u32 = 27;
+
+/// Sorts the words of [`rounds_in_hilbert_order`] into `room[n..2n]` (`room[..n]` is the
+/// sort's spare room) and returns (with `POINTS`) the points in the same order (else an empty
+/// list). Fewer than 2^[`INDEX_BITS`] points; `room` holds at least two words per point.
+fn sorted_words<const POINTS: bool>(
+    points: &[Point],
+    seed: u64,
+    growth_bits: u32,
+    room: &mut [u64],
+) -> Vec<Point> {
+    const TOP_BITS: u32 = 8;
+    let n = points.len();
+    let (words, sorted) = room[..2 * n].split_at_mut(n);
     let key = hilbert_key_of(points);
     let mut state = seed;
-    let words: Vec<u64> = points
-        .iter()
-        .enumerate()
-        .map(|(i, &p)| {
-            let round = u64::from(next_round(&mut state, growth_bits));
-            (round << (32 + INDEX_BITS)) | (u64::from(key(p)) << INDEX_BITS) | i as u64
-        })
-        .collect();
+    for (i, (word, &p)) in words.iter_mut().zip(points).enumerate() {
+        let round = u64::from(next_round(&mut state, growth_bits));
+        *word = (round << (32 + INDEX_BITS)) | (u64::from(key(p)) << INDEX_BITS) | i as u64;
+    }
     // The bucket of a word: its round and the top bits of its key.
     let bucket = |w: u64| (w >> (32 + INDEX_BITS - TOP_BITS)) as usize;
     let mut starts = vec![0usize; (ROUNDS << TOP_BITS) + 1];
-    for &w in &words {
+    for &w in words.iter() {
         starts[bucket(w) + 1] += 1;
     }
     for b in 1..starts.len() {
         starts[b] += starts[b - 1];
     }
-    let mut sorted = vec![0u64; words.len()];
+    let mut sorted_points: Vec<Point> = if POINTS {
+        vec![[0.0; 2]; points.len()]
+    } else {
+        Vec::new()
+    };
     let mut next = starts.clone();
-    for &w in &words {
+    for (i, &w) in words.iter().enumerate() {
         let b = bucket(w);
         sorted[next[b]] = w;
+        if POINTS {
+            sorted_points[next[b]] = points[i];
+        }
         next[b] += 1;
     }
     drop(next);
-    let mut spare = words;
+    let spare = words;
+    let largest = starts.windows(2).map(|r| r[1] - r[0]).max().unwrap_or(0);
+    let mut spare_points: Vec<Point> = if POINTS {
+        vec![[0.0; 2]; largest]
+    } else {
+        Vec::new()
+    };
     for range in starts.windows(2) {
-        sort_bucket(&mut sorted[range[0]..range[1]], &mut spare, INDEX_BITS);
+        let (from, to) = (range[0], range[1]);
+        let bucket_points: &mut [Point] = if POINTS {
+            &mut sorted_points[from..to]
+        } else {
+            &mut []
+        };
+        sort_bucket(
+            &mut sorted[from..to],
+            bucket_points,
+            spare,
+            &mut spare_points,
+            INDEX_BITS,
+        );
     }
-    let index_mask = (1u64 << INDEX_BITS) - 1;
-    sorted.iter().map(|&w| (w & index_mask) as u32).collect()
+    sorted_points
 }
 
 /// Sorts the words of one bucket (their top bits equal, their indices increasing) by the 24
 /// key bits above bit `index_bits`: three stable 8-bit counting passes through `spare` (small
-/// buckets by a comparison sort: the words are distinct, so any sort gives the same order).
-fn sort_bucket(words: &mut [u64], spare: &mut [u64], index_bits: u32) {
+/// buckets by insertion: the words are distinct, so any sort gives the same order). The
+/// bucket's `points` (one per word, or none at all) move with their words.
+fn sort_bucket(
+    words: &mut [u64],
+    points: &mut [Point],
+    spare: &mut [u64],
+    spare_points: &mut [Point],
+    index_bits: u32,
+) {
+    let with_points = !points.is_empty();
     if words.len() <= 64 {
-        words.sort_unstable();
+        for i in 1..words.len() {
+            let (w, p) = (words[i], if with_points { points[i] } else { [0.0; 2] });
+            let mut j = i;
+            while j > 0 && words[j - 1] > w {
+                words[j] = words[j - 1];
+                if with_points {
+                    points[j] = points[j - 1];
+                }
+                j -= 1;
+            }
+            words[j] = w;
+            if with_points {
+                points[j] = p;
+            }
+        }
         return;
     }
-    let spare = &mut spare[..words.len()];
+    let n = words.len();
+    let spare = &mut spare[..n];
+    let spare_points: &mut [Point] = if with_points {
+        &mut spare_points[..n]
+    } else {
+        &mut []
+    };
+    // The passes go back and forth between the bucket and the spare room; one copy at the end
+    // if the words end up in the spare room.
+    let mut in_spare = false;
     for pass in 0..3 {
         let shift = index_bits + 8 * pass;
         let digit = |w: u64| ((w >> shift) & 0xff) as usize;
+        let (from, to, from_points, to_points) = if in_spare {
+            (&*spare, &mut *words, &*spare_points, &mut *points)
+        } else {
+            (&*words, &mut *spare, &*points, &mut *spare_points)
+        };
         let mut counts = [0usize; 257];
-        for &w in words.iter() {
+        for &w in from {
             counts[digit(w) + 1] += 1;
         }
-        if counts.contains(&words.len()) {
+        if counts.contains(&n) {
             continue; // one digit value for all words: the pass would not move anything
         }
         for d in 1..257 {
             counts[d] += counts[d - 1];
         }
-        for &w in words.iter() {
-            let d = digit(w);
-            spare[counts[d]] = w;
-            counts[d] += 1;
+        if with_points {
+            for (&w, &p) in from.iter().zip(from_points) {
+                let d = digit(w);
+                to[counts[d]] = w;
+                to_points[counts[d]] = p;
+                counts[d] += 1;
+            }
+        } else {
+            for &w in from {
+                let d = digit(w);
+                to[counts[d]] = w;
+                counts[d] += 1;
+            }
         }
+        in_spare = !in_spare;
+    }
+    if in_spare {
         words.copy_from_slice(spare);
+        points.copy_from_slice(spare_points);
     }
 }
 
@@ -378,6 +547,38 @@ mod tests {
                     points.len()
                 );
             }
+        }
+    }
+
+    /// The points that travel with the words are the points of the order, ties, small buckets
+    /// and one bucket holding everything included.
+    #[test]
+    fn points_travel_with_their_order() {
+        let mut s = 5;
+        let mut unit = || splitmix64(&mut s) as f64 / u64::MAX as f64;
+        let uniform: Vec<Point> = (0..100_000).map(|_| [unit(), unit()]).collect();
+        let grid: Vec<Point> = (0..20_000)
+            .map(|i| [(i % 37) as f64, ((i * 7) % 23) as f64])
+            .collect();
+        let clustered: Vec<Point> = (0..30_000)
+            .map(|i| [1.0 + 1e-12 * (i % 1000) as f64, 2.0])
+            .collect();
+        for points in [&uniform, &grid, &clustered, &uniform[..70].to_vec()] {
+            for (order, sorted) in [
+                multiscale_order_and_points(points, None),
+                brio_order_and_points(points, 42, Some(&mut vec![7; 2 * points.len()])),
+            ] {
+                let gathered: Vec<Point> = order.iter().map(|&v| points[v as usize]).collect();
+                assert_eq!(sorted, gathered);
+            }
+            assert_eq!(
+                multiscale_order_and_points(points, None).0,
+                multiscale_order(points)
+            );
+            assert_eq!(
+                brio_order_and_points(points, 42, None).0,
+                brio_order(points, 42)
+            );
         }
     }
 
