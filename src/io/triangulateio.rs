@@ -255,13 +255,59 @@ unsafe fn transfer_all(transfers: &[Transfer<'_>]) -> Result<(), Error> {
             fresh.push((t.field, p));
         }
     }
-    for t in transfers {
-        // SAFETY: the destination is either our new allocation of this size or the caller's
-        // buffer, which the caller promises is large enough; the source is a Rust slice that
-        // does not overlap either.
-        unsafe { ptr::copy_nonoverlapping(t.bytes.as_ptr(), *t.field as *mut u8, t.bytes.len()) };
+    let total: usize = transfers.iter().map(|t| t.bytes.len()).sum();
+    let two_cores = std::thread::available_parallelism().is_ok_and(|n| n.get() >= 2);
+    // Each destination: where its bytes go (an address, so that the halves can cross threads).
+    let copies: Vec<(usize, &[u8])> = transfers
+        .iter()
+        .map(|t| {
+            // SAFETY: each field is live (caller's contract) and now non-NULL.
+            let destination = unsafe { *t.field } as usize;
+            (destination, t.bytes)
+        })
+        .collect();
+    if two_cores && total >= PARALLEL_COPY_BYTES {
+        // Large outputs (a million points: some 44 MB, mostly fresh pages that the kernel
+        // faults in one by one) are copied in two halves, the second on another thread.
+        std::thread::scope(|scope| {
+            let spawned =
+                std::thread::Builder::new().spawn_scoped(scope, || copy_parts(&copies, 1));
+            copy_parts(&copies, 0);
+            if spawned.is_err() {
+                copy_parts(&copies, 1); // no second thread to be had: this one copies it
+            }
+        });
+    } else {
+        copy_parts(&copies, 0);
+        copy_parts(&copies, 1);
     }
     Ok(())
+}
+
+/// Outputs larger than this in all are copied on two threads.
+const PARALLEL_COPY_BYTES: usize = 4 << 20;
+
+/// Copies half `half` (0: the first, 1: the second) of each array to its destination.
+fn copy_parts(copies: &[(usize, &[u8])], half: usize) {
+    for &(destination, bytes) in copies {
+        let middle = bytes.len() / 2;
+        let range = if half == 0 {
+            0..middle
+        } else {
+            middle..bytes.len()
+        };
+        // SAFETY: the destination is either our new allocation of `bytes.len()` bytes or the
+        // caller's buffer, which the caller promises is large enough; the source is a Rust slice
+        // that overlaps neither; the two halves are disjoint, so two threads never write the
+        // same byte.
+        unsafe {
+            ptr::copy_nonoverlapping(
+                bytes[range.clone()].as_ptr(),
+                (destination as *mut u8).add(range.start),
+                range.len(),
+            )
+        };
+    }
 }
 
 macro_rules! field_ptr {
