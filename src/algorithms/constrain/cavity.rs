@@ -227,21 +227,12 @@ impl<P: Predicates> Constrainer<P> {
 
         // Commit: the slots' triangles are rewritten, joined to each other and to the outside.
         let mesh = self.inserter.mesh_mut();
-        for (&t, &(corners, join)) in slots.iter().zip(triangles.iter()) {
-            // Every cavity vertex is a corner of a new triangle: its outgoing half-edge is
-            // refreshed here (the old one may have been in the cavity).
-            mesh.rewrite_triangle(t, corners);
-            if join != EdgeId::NONE {
-                mesh.link(t.edge(0), join);
-            }
-        }
+        // Every cavity vertex is a corner of a new triangle: its outgoing half-edge is refreshed
+        // there (the old one may have been in the cavity).
+        mesh.rewrite_triangles(slots, triangles);
         for (chain, range) in [(&*left, left_range), (&*right, right_range)] {
             let edges = range.start..range.end - 1;
-            for (&outer, &inner) in chain.outer[edges.clone()].iter().zip(&chain.inner[edges]) {
-                if outer != EdgeId::NONE {
-                    mesh.link_to_outer(inner, outer);
-                }
-            }
+            mesh.link_all_to_outer(&chain.inner[edges.clone()], &chain.outer[edges]);
         }
         for pair in inner_links.chunks_exact(2) {
             // The segment did not cross this edge, so it may be a segment: it stays one.
