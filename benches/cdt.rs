@@ -84,10 +84,7 @@ fn peer_run(contestant: Contestant, points: &[[f64; 2]], segments: &[[i32; 2]]) 
                 .iter()
                 .map(|p| spade::Point2::new(p[0], p[1]))
                 .collect();
-            let edges: Vec<[usize; 2]> = segments
-                .iter()
-                .map(|s| s.map(|v| v as usize))
-                .collect();
+            let edges: Vec<[usize; 2]> = segments.iter().map(|s| s.map(|v| v as usize)).collect();
             measured(|| {
                 std::panic::catch_unwind(move || {
                     spade::ConstrainedDelaunayTriangulation::<spade::Point2<f64>>::bulk_load_cdt(
@@ -211,11 +208,11 @@ fn print_table(n: usize, reps: usize, contestants: &[Contestant], runs: &[Vec<Ru
         "CDT of a random star-shaped polygon of {n} vertices (switches \"{SWITCHES}\"), medians of {reps} interleaved run(s)"
     );
     println!(
-        "| {:<22} | {:>7} | {:>7} | {:>20} | {:>13} | {:>9} |",
+        "| {:<22} | {:>7} | {:>7} | {:>22} | {:>13} | {:>9} |",
         "", "wall s", "cpu s", "Triangle's / ours", "peak B/vertex", "triangles"
     );
     println!(
-        "|{:-<24}|{:->9}|{:->9}|{:->22}|{:->15}|{:->11}|",
+        "|{:-<24}|{:->9}|{:->9}|{:->24}|{:->15}|{:->11}|",
         "", "", "", "", "", ""
     );
     for (k, &c) in contestants.iter().enumerate() {
@@ -232,7 +229,7 @@ fn print_table(n: usize, reps: usize, contestants: &[Contestant], runs: &[Vec<Ru
             None => "failed".to_string(),
         };
         println!(
-            "| {:<22} | {:>7.3} | {:>7.3} | {:>20} | {:>13.0} | {:>9} |",
+            "| {:<22} | {:>7.3} | {:>7.3} | {:>22} | {:>13.0} | {:>9} |",
             c.name(),
             times.wall.as_secs_f64(),
             times.cpu.as_secs_f64(),

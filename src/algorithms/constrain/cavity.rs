@@ -124,7 +124,7 @@ impl<P: Predicates> Constrainer<P> {
         left.set(0, a, pa);
         left.set(1, l1, mesh.point(l1));
         left.outer[0] = mesh.twin(h1.next()); // a → l1
-        // The right chain from the back: a at k + 1, r1 before it.
+                                              // The right chain from the back: a at k + 1, r1 before it.
         right.set(k + 1, a, pa);
         right.set(k, r1, mesh.point(r1));
         right.outer[k] = mesh.twin(h1.prev()); // r1 → a
@@ -195,10 +195,15 @@ impl<P: Predicates> Constrainer<P> {
             filter[word] |= mask;
         }
         inner_links.clear();
-        for (chain, range) in [(&mut *left, left_range.clone()), (&mut *right, right_range.clone())]
-        {
+        for (chain, range) in [
+            (&mut *left, left_range.clone()),
+            (&mut *right, right_range.clone()),
+        ] {
             let edges = range.start..range.end - 1;
-            for (outer, &inner) in chain.outer[edges.clone()].iter_mut().zip(&chain.inner[edges]) {
+            for (outer, &inner) in chain.outer[edges.clone()]
+                .iter_mut()
+                .zip(&chain.inner[edges])
+            {
                 let t = outer.triangle();
                 let (word, mask) = filter_bit(t);
                 if filter[word] & mask != 0 && cavity_of[t.index()] == *serial {
@@ -346,7 +351,10 @@ impl Planner<'_> {
                 return false;
             }
             let t = slots[*planned];
-            triangles[*planned] = ([v[first as usize], v[last as usize], v[apex as usize]], join);
+            triangles[*planned] = (
+                [v[first as usize], v[last as usize], v[apex as usize]],
+                join,
+            );
             *planned += 1;
             // Triangle (u, w, c): w → c at 3t + 1 faces the sub-polygon (apex … last), c → u at
             // 3t + 2 the sub-polygon (first … apex); a side on the chain is a boundary edge.
