@@ -341,7 +341,7 @@ impl<P: Predicates> Constrainer<P> {
         // for `b` among the neighbours first, which needs no point and no predicate. (Then no
         // other neighbour lies on the ray to `b` and no wedge strictly contains it, so the search
         // below would find the same edge.)
-        if let Some(e) = mesh.star(a).find(|&e| mesh.dest(e) == b) {
+        if let Some(e) = edge_between(mesh, a, b) {
             let beside = |pu: Point, pv: Point, pw: Point| {
                 on_line(P::orient2d(pu, pv, pw), pu, pv) && along(pu, pw, pv) && before(pu, pw, pv)
             };
@@ -563,6 +563,30 @@ impl<P: Predicates> Constrainer<P> {
                 .filter(|&t| !self.inserter.mesh().is_ghost(t)),
             Location::Outside(_) => None,
         }
+    }
+}
+
+/// The half-edge from `a` to `b` if they are neighbours ([`Mesh::find_edge`]'s answer, the edge
+/// being unique), by a leaner turn around `a`: leaving the triangle `(a, x, y)` of half-edge
+/// `a → x` through `y → a`, whose twin is the next half-edge `a → y`, the corner `y` read there
+/// is that half-edge's destination (no `next` to compute, no second read).
+fn edge_between(mesh: &Mesh, a: VertexId, b: VertexId) -> Option<EdgeId> {
+    let start = mesh.vertex_edge(a)?;
+    let mut e = start;
+    loop {
+        let back = e.prev(); // y → a
+        let f = mesh.twin(back); // a → y
+        if f == EdgeId::NONE {
+            // An open star (a boundary not covered by ghosts): the general search.
+            return mesh.find_edge(a, b);
+        }
+        if mesh.origin(back) == b {
+            return Some(f);
+        }
+        if f == start {
+            return None;
+        }
+        e = f;
     }
 }
 
