@@ -22,7 +22,8 @@ use common::call::{ours_status, run_call, MeshInput};
 use common::points::{self, Point};
 use common::reference::Reference;
 use common::timing::{
-    benchmarking, median, number_from_env, sizes_from_env, sorted_triangles, Times,
+    benchmarking, large_blocks_from_mmap, measured, median, number_from_env, sizes_from_env,
+    sorted_triangles, Times,
 };
 use triangle_rs::io::triangulateio::TriangulateIO;
 
@@ -59,36 +60,6 @@ struct Run {
     peak_bytes: u64,
     triangles: usize,
     triangle_set: Option<Vec<[i32; 3]>>,
-}
-
-/// A field of /proc/self/status in bytes (0 where unreadable).
-fn status_bytes(field: &str) -> u64 {
-    let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
-    status
-        .lines()
-        .find_map(|line| line.strip_prefix(field))
-        .and_then(|rest| {
-            rest.trim()
-                .trim_end_matches("kB")
-                .trim()
-                .parse::<u64>()
-                .ok()
-        })
-        .map_or(0, |kb| kb * 1024)
-}
-
-/// Runs `work` and measures its time and its peak memory growth: the kernel's high-water mark
-/// is reset (`clear_refs` 5) to the current resident size first, then read while `work`'s result
-/// (the outputs) is still alive.
-fn measured<T>(work: impl FnOnce() -> T) -> (Times, u64, T) {
-    // SAFETY: no arguments to check; returns free heap memory to the system, so that memory
-    // freed by earlier runs and still resident does not hide this run's growth.
-    unsafe { libc::malloc_trim(0) };
-    let _ = std::fs::write("/proc/self/clear_refs", "5");
-    let before = status_bytes("VmRSS:");
-    let (times, result) = Times::measure(work);
-    let peak = status_bytes("VmHWM:").saturating_sub(before);
-    (times, peak, result)
 }
 
 /// Pins the calling thread to the CPU it runs on for `work`, then restores its affinity.
@@ -192,10 +163,7 @@ fn main() {
     } else {
         (vec![2_000], 1)
     };
-    // Large blocks always from mmap (no dynamic threshold): freed, they leave the process, and
-    // each run's growth is its own.
-    // SAFETY: a valid mallopt parameter and value, set before the runs allocate.
-    unsafe { libc::mallopt(libc::M_MMAP_THRESHOLD, 128 * 1024) };
+    large_blocks_from_mmap();
     let reference = common::reference();
     let mut contestants = vec![
         Contestant::OursOneCore,

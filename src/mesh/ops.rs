@@ -359,6 +359,48 @@ impl Mesh {
         }
     }
 
+    /// [`Self::rewrite_triangle`] for a whole retriangulated region, in order: triangle
+    /// `slots[j]` takes the corners `triangles[j].0`, and its slot-0 half-edge is joined to
+    /// `triangles[j].1` unless that is [`EdgeId::NONE`]. (One pass, the tracking tested once.)
+    pub fn rewrite_triangles(
+        &mut self,
+        slots: &[TriangleId],
+        triangles: &[([VertexId; 3], EdgeId)],
+    ) {
+        let tracks_segments = !self.segment.is_empty();
+        let tracks_vertex_edges = !self.vertex_edge.is_empty();
+        for (&t, &(corners, join)) in slots.iter().zip(triangles) {
+            let base = 3 * t.index();
+            let corners = corners.map(VertexId::raw);
+            self.corners[base..base + 3].copy_from_slice(&corners);
+            if tracks_segments {
+                self.segment[base..base + 3].fill(NONE);
+            }
+            if tracks_vertex_edges {
+                for (k, v) in corners.into_iter().enumerate() {
+                    self.vertex_edge[v as usize] = (base + k) as u32;
+                }
+            }
+            if join != EdgeId::NONE {
+                self.link_raw(base as u32, join.raw());
+            }
+        }
+    }
+
+    /// [`Self::link_to_outer`] for each pair `(inner[i], outer[i])` whose `outer[i]` is not
+    /// [`EdgeId::NONE`].
+    pub fn link_all_to_outer(&mut self, inner: &[EdgeId], outer: &[EdgeId]) {
+        let tracks_segments = !self.segment.is_empty();
+        for (&inner, &outer) in inner.iter().zip(outer) {
+            if outer != EdgeId::NONE {
+                self.link_raw(inner.raw(), outer.raw());
+                if tracks_segments {
+                    self.segment[inner.index()] = self.segment[outer.index()];
+                }
+            }
+        }
+    }
+
     /// Joins `inner`, a half-edge of a rewritten triangle, to `outer`, an untouched one across
     /// the boundary of the rewritten region: `inner` takes `outer`'s segment id (where tracked).
     #[inline]

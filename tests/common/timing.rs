@@ -1,5 +1,5 @@
-//! Timing helpers of the benchmarks: process CPU time, medians, command-line sizes, and timed,
-//! interleaved calls of our C ABI and Debian's Triangle on the same input.
+//! Timing helpers of the benchmarks: process CPU time, medians, command-line sizes, peak memory,
+//! and timed, interleaved calls of our C ABI and Debian's Triangle on the same input.
 
 use std::cell::Cell;
 use std::os::raw::{c_char, c_void};
@@ -101,6 +101,44 @@ impl Times {
     }
 }
 
+/// A field of /proc/self/status in bytes (0 where unreadable).
+pub fn status_bytes(field: &str) -> u64 {
+    let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
+    status
+        .lines()
+        .find_map(|line| line.strip_prefix(field))
+        .and_then(|rest| {
+            rest.trim()
+                .trim_end_matches("kB")
+                .trim()
+                .parse::<u64>()
+                .ok()
+        })
+        .map_or(0, |kb| kb * 1024)
+}
+
+/// Makes every large block come from mmap (no dynamic threshold), so that a freed one leaves
+/// the process and each run's peak memory growth ([`measured`]) is its own. Call it before the
+/// runs allocate.
+pub fn large_blocks_from_mmap() {
+    // SAFETY: a valid mallopt parameter and value.
+    unsafe { libc::mallopt(libc::M_MMAP_THRESHOLD, 128 * 1024) };
+}
+
+/// Runs `work` and measures its time and its peak memory growth in bytes: the kernel's
+/// high-water mark is reset (`clear_refs` 5) to the current resident size first, then read
+/// while `work`'s result (the outputs) is still alive.
+pub fn measured<T>(work: impl FnOnce() -> T) -> (Times, u64, T) {
+    // SAFETY: no arguments to check; returns free heap memory to the system, so that memory
+    // freed by earlier runs and still resident does not hide this run's growth.
+    unsafe { libc::malloc_trim(0) };
+    let _ = std::fs::write("/proc/self/clear_refs", "5");
+    let before = status_bytes("VmRSS:");
+    let (times, result) = Times::measure(work);
+    let peak = status_bytes("VmHWM:").saturating_sub(before);
+    (times, peak, result)
+}
+
 /// One implementation of Triangle's C ABI.
 #[derive(Clone, Copy)]
 pub enum Library {
@@ -113,6 +151,30 @@ pub enum Library {
 /// One call of `library`'s `triangulate` on `input`, timed around the C call alone (not the
 /// copies of the input and output arrays); panics if the call fails.
 pub fn timed_call(library: Library, switches: &str, input: &MeshInput) -> (Times, Triangulation) {
+    let (times, _, output) = call_with(library, switches, input, |call| {
+        let (times, result) = Times::measure(call);
+        (times, 0, result)
+    });
+    (times, output)
+}
+
+/// [`timed_call`] with the call's peak memory growth in bytes ([`measured`]).
+pub fn measured_call(
+    library: Library,
+    switches: &str,
+    input: &MeshInput,
+) -> (Times, u64, Triangulation) {
+    call_with(library, switches, input, |call| measured(call))
+}
+
+/// One call of `library`'s `triangulate` on `input`, measured by `measure` around the C call
+/// alone; panics if the call fails.
+fn call_with(
+    library: Library,
+    switches: &str,
+    input: &MeshInput,
+    measure: impl Fn(&dyn Fn() -> Result<(), String>) -> (Times, u64, Result<(), String>),
+) -> (Times, u64, Triangulation) {
     let (call, free): (Box<RawCall<'_>>, Box<dyn Fn(*mut c_void)>) = match library {
         Library::Ours => (
             // SAFETY: valid switches and structs prepared by `run_call`.
@@ -133,16 +195,17 @@ pub fn timed_call(library: Library, switches: &str, input: &MeshInput) -> (Times
             Box::new(|p| unsafe { reference.trifree(p) }),
         ),
     };
-    let times = Cell::new(None);
-    let timed =
+    let measurement = Cell::new(None);
+    let measured_call =
         |s: *mut c_char, i: *mut TriangulateIO, o: *mut TriangulateIO, v: *mut TriangulateIO| {
-            let (t, result) = Times::measure(|| call(s, i, o, v));
-            times.set(Some(t));
+            let (times, peak, result) = measure(&|| call(s, i, o, v));
+            measurement.set(Some((times, peak)));
             result
         };
-    let output = run_call(&timed, &*free, switches, input, false)
+    let output = run_call(&measured_call, &*free, switches, input, false)
         .unwrap_or_else(|message| panic!("triangulate failed: {message}"));
-    (times.get().expect("run_call made the call"), output)
+    let (times, peak) = measurement.get().expect("run_call made the call");
+    (times, peak, output)
 }
 
 /// The triangles of `mesh`, each rotated to start at its smallest corner, sorted: equal for two

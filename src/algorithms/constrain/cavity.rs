@@ -5,39 +5,76 @@
 
 use super::*;
 
-/// A polygon of the cavity: its vertices in order (and their positions, contiguous for the
-/// circle tests) and, per consecutive pair `(v[i], v[i+1])`, the half-edge from `v[i]` to
-/// `v[i+1]` that stays (outside the cavity, across its boundary).
+/// The size of [`CavityScratch::filter`], in 64-bit words.
+const FILTER_WORDS: usize = 16;
+
+/// The bit of triangle `t` in [`CavityScratch::filter`]: (word, mask), from a multiplicative
+/// hash (neighbouring slots spread over the words).
+#[inline(always)]
+fn filter_bit(t: TriangleId) -> (usize, u64) {
+    let bits = (FILTER_WORDS * 64).trailing_zeros();
+    let hash = t.raw().wrapping_mul(0x9E37_79B1) >> (32 - bits);
+    ((hash >> 6) as usize, 1 << (hash & 63))
+}
+
+/// The cavity's two polygons, each a chain of vertices from one end of the segment to the other
+/// (the left one from `a` to `b`, the right one from `b` to `a`), written by index into buffers
+/// of `k + 2` entries for `k` crossed edges: the left chain from the front, the right one from
+/// the back (it is collected from `a` to `b`, in the reverse of its order). Per chain edge
+/// `(v[i], v[i+1])`: `outer[i]`, the half-edge from `v[i]` to `v[i+1]` across the cavity's
+/// boundary (it stays), and `inner[i]`, the new half-edge from `v[i+1]` to `v[i]` planned on it.
+/// The positions are kept contiguous for the circle tests.
 #[derive(Clone, Default)]
-pub(super) struct Chain {
+struct Chain {
     vertices: Vec<VertexId>,
     points: Vec<Point>,
     outer: Vec<EdgeId>,
+    inner: Vec<EdgeId>,
 }
 
 impl Chain {
-    pub(super) fn clear(&mut self) {
-        self.vertices.clear();
-        self.points.clear();
-        self.outer.clear();
+    /// Room for `len` vertices, to be written by index (the buffers only grow: what is read
+    /// was written for this cavity).
+    fn make_room(&mut self, len: usize) {
+        if self.vertices.len() < len {
+            self.vertices.resize(len, GHOST);
+            self.points.resize(len, [0.0; 2]);
+            self.outer.resize(len, EdgeId::NONE);
+            self.inner.resize(len, EdgeId::NONE);
+        }
     }
 
-    pub(super) fn push(&mut self, vertex: VertexId, point: Point) {
-        self.vertices.push(vertex);
-        self.points.push(point);
-    }
-
-    pub(super) fn reverse(&mut self) {
-        self.vertices.reverse();
-        self.points.reverse();
-        self.outer.reverse();
+    #[inline(always)]
+    fn set(&mut self, i: usize, vertex: VertexId, point: Point) {
+        self.vertices[i] = vertex;
+        self.points[i] = point;
     }
 }
 
-#[derive(Clone, Copy)]
-pub(super) enum Polygon {
-    Left,
-    Right,
+/// Buffers of the cavity retriangulation, kept from segment to segment.
+#[derive(Clone, Default)]
+pub(super) struct CavityScratch {
+    left: Chain,
+    right: Chain,
+    /// The triangle slots of the cavity (`k + 1`), reused by its new triangles.
+    slots: Vec<TriangleId>,
+    /// Sub-polygons of one polygon still to triangulate: (first, last, half-edge to join to the
+    /// base).
+    tasks: Vec<(u32, u32, EdgeId)>,
+    /// The new triangles, one per slot: corners (base origin, base destination, apex) and the
+    /// half-edge their base is joined to (`NONE` for the first one, whose base is the segment).
+    triangles: Vec<([VertexId; 3], EdgeId)>,
+    /// Per triangle slot, the serial number of the last cavity that held it (to tell in O(1)
+    /// whether a half-edge lies in the current cavity); grown with the mesh.
+    cavity_of: Vec<u32>,
+    /// A bit per hash of the current cavity's slots: a clear bit rules a triangle out without
+    /// reading `cavity_of` (a cache miss per boundary edge otherwise).
+    filter: [u64; FILTER_WORDS],
+    /// The serial number of the current cavity (never 0, the mark of no cavity).
+    serial: u32,
+    /// Triples (new half-edge, old half-edge inside the cavity, its segment id) for boundary
+    /// edges with the cavity on both sides; see [`Constrainer::retriangulate_cavity`].
+    inner_links: Vec<(EdgeId, EdgeId, u32)>,
 }
 
 impl<P: Predicates> Constrainer<P> {
@@ -56,161 +93,125 @@ impl<P: Predicates> Constrainer<P> {
             // Tags would have to be assigned per new triangle; the flip path does that.
             return false;
         }
-        let Scratch {
-            crossed,
+        let crossed = &self.scratch.crossed;
+        let CavityScratch {
             left,
             right,
             slots,
             tasks,
             triangles,
-            outer_links,
             cavity_of,
-            cavity_filter,
-            cavity_serial,
+            filter,
+            serial,
             inner_links,
-            ..
-        } = &mut self.scratch;
+        } = &mut self.scratch.cavity;
         let mesh = self.inserter.mesh();
+        let k = crossed.len();
+        debug_assert!(k > 0);
+        // The crossed triangles T0 … Tk: T0 = (a, r1, l1) holds the first crossed edge r1 → l1;
+        // each later one adds its apex to the left or the right chain; Tk has apex b. A chain
+        // edge's outer half-edge is the twin of the cavity triangle's half-edge on it.
+        left.make_room(k + 2);
+        right.make_room(k + 2);
+        if slots.len() < k + 1 {
+            slots.resize(k + 1, TriangleId::NONE);
+            triangles.resize(k + 1, ([GHOST; 3], EdgeId::NONE));
+        }
+        let (slots, triangles) = (&mut slots[..k + 1], &mut triangles[..k + 1]);
+        let h1 = crossed[0];
+        slots[0] = h1.triangle();
+        let (pa, l1, r1) = (mesh.point(a), mesh.dest(h1), mesh.origin(h1));
+        left.set(0, a, pa);
+        left.set(1, l1, mesh.point(l1));
+        left.outer[0] = mesh.twin(h1.next()); // a → l1
+                                              // The right chain from the back: a at k + 1, r1 before it.
+        right.set(k + 1, a, pa);
+        right.set(k, r1, mesh.point(r1));
+        right.outer[k] = mesh.twin(h1.prev()); // r1 → a
+        let (mut left_len, mut right_start) = (2, k);
+        for i in 0..k {
+            let f = mesh.twin(crossed[i]); // left → right, in the next triangle of the cavity
+            slots[i + 1] = f.triangle();
+            let z = mesh.apex(f);
+            let pz = mesh.point(z);
+            // The next crossed edge is right → z when z is on the left, z → left otherwise.
+            let next = crossed.get(i + 1).copied();
+            if next.is_none_or(|h| h == f.next()) {
+                left.set(left_len, z, pz);
+                left.outer[left_len - 1] = mesh.twin(f.prev()); // left → z
+                left_len += 1;
+            }
+            if next.is_none_or(|h| h == f.prev()) {
+                right_start -= 1;
+                right.set(right_start, z, pz);
+                right.outer[right_start] = mesh.twin(f.next()); // z → right
+            }
+        }
+        debug_assert!(left.vertices[left_len - 1] == b && right.vertices[right_start] == b);
+
+        // Plan the new triangles, slot `slots[j]` taking the `j`-th: the left polygon first, its
+        // first triangle holding the segment a → b; then the right one, whose first triangle's
+        // base b → a is that half-edge's twin.
+        let mut planned = 0;
+        let left_range = 0..left_len;
+        let right_range = right_start..k + 2;
+        for (chain, range, join) in [
+            (&mut *left, left_range.clone(), EdgeId::NONE),
+            (&mut *right, right_range.clone(), slots[0].edge(0)),
+        ] {
+            let (slots, triangles) = (&*slots, &mut *triangles);
+            let planner = Planner {
+                vertices: &chain.vertices[range.clone()],
+                points: &chain.points[range.clone()],
+                inner: &mut chain.inner[range],
+                slots,
+                triangles,
+            };
+            if !planner.plan::<P>(tasks, &mut planned, join) {
+                return false;
+            }
+        }
+        debug_assert_eq!(planned, k + 1);
+
+        // The union of the crossed triangles need not be a simple polygon: the segment can leave
+        // the star of a vertex and enter it again, so a chain may visit a vertex twice, and an
+        // edge between two crossed triangles that the segment does not cross lies on a chain
+        // twice, once in each direction (Shewchuk and Brown 2015 allow the same). Such an edge's
+        // "outer" half-edge is in the cavity; its two new half-edges are joined to each other
+        // (and its outer half-edge is set to NONE, so that the commit leaves it alone).
         // A new serial number marks this cavity's slots (all marks are cleared when it wraps).
-        let serial = match cavity_serial.checked_add(1) {
+        *serial = match serial.checked_add(1) {
             Some(serial) => serial,
             None => {
                 cavity_of.fill(0);
                 1
             }
         };
-        *cavity_serial = serial;
         cavity_of.resize((mesh.triangle_count() as usize).max(cavity_of.len()), 0);
-        let k = crossed.len();
-        debug_assert!(k > 0);
-        // The crossed triangles T0 … Tk: T0 = (a, r1, l1) holds the first crossed edge r1 → l1;
-        // each later one adds its apex to the left or the right chain; Tk has apex b. A chain
-        // edge's outer half-edge is the twin of the cavity triangle's half-edge on it.
-        // The right chain is collected from a to b here and reversed below.
-        left.clear();
-        right.clear();
-        slots.clear();
-        let h1 = crossed[0];
-        slots.push(h1.triangle());
-        let (pa, l1, r1) = (mesh.point(a), mesh.dest(h1), mesh.origin(h1));
-        left.push(a, pa);
-        left.push(l1, mesh.point(l1));
-        left.outer.push(mesh.twin(h1.next())); // a → l1
-        right.push(a, pa);
-        right.push(r1, mesh.point(r1));
-        right.outer.push(mesh.twin(h1.prev())); // r1 → a
-        for i in 0..k {
-            let f = mesh.twin(crossed[i]); // left → right, in the next triangle of the cavity
-            slots.push(f.triangle());
-            let z = mesh.apex(f);
-            let pz = mesh.point(z);
-            let last = i + 1 == k;
-            // The next crossed edge is right → z when z is on the left, z → left otherwise.
-            if last || crossed[i + 1] == f.next() {
-                left.push(z, pz);
-                left.outer.push(mesh.twin(f.prev())); // left → z
-            }
-            if last || crossed[i + 1] == f.prev() {
-                right.push(z, pz);
-                right.outer.push(mesh.twin(f.next())); // z → right
-            }
-        }
-        debug_assert!(*left.vertices.last().unwrap() == b && *right.vertices.last().unwrap() == b);
-        right.reverse();
-        // The union of the crossed triangles need not be a simple polygon: the segment can leave
-        // the star of a vertex and enter it again, so a chain may visit a vertex twice, and an
-        // edge between two crossed triangles that the segment does not cross lies on a chain
-        // twice, once in each direction (Shewchuk and Brown 2015 allow the same). Such an edge's
-        // "outer" half-edge is in the cavity; its two new half-edges are joined to each other.
-        *cavity_filter = [0; CAVITY_FILTER_WORDS];
+        *filter = [0; FILTER_WORDS];
         for &t in slots.iter() {
-            cavity_of[t.index()] = serial;
-            let (word, mask) = cavity_filter_bit(t);
-            cavity_filter[word] |= mask;
+            cavity_of[t.index()] = *serial;
+            let (word, mask) = filter_bit(t);
+            filter[word] |= mask;
         }
-        let in_cavity = |t: TriangleId| {
-            let (word, mask) = cavity_filter_bit(t);
-            cavity_filter[word] & mask != 0 && cavity_of[t.index()] == serial
-        };
         inner_links.clear();
-
-        // Plan the new triangles: top-down from each polygon's base (the segment), each
-        // sub-polygon's base joined to the half-edge of its parent triangle. Slot `slots[j]` takes
-        // the `j`-th new triangle; the left polygon's first triangle holds the segment a → b, the
-        // right polygon's first one b → a.
-        triangles.clear();
-        outer_links.clear();
-        tasks.clear();
-        tasks.push((
-            Polygon::Right,
-            0,
-            right.vertices.len() as u32 - 1,
-            EdgeId::NONE,
-        ));
-        tasks.push((
-            Polygon::Left,
-            0,
-            left.vertices.len() as u32 - 1,
-            EdgeId::NONE,
-        ));
-        while let Some((polygon, first, last, join)) = tasks.pop() {
-            let chain = match polygon {
-                Polygon::Left => &*left,
-                Polygon::Right => &*right,
-            };
-            // A boundary edge of the cavity (a sub-polygon of two vertices, `first` and
-            // `first + 1`): the new half-edge `join` becomes the twin of its outer half-edge.
-            let mut join_boundary = |first: u32, join: EdgeId| {
-                let outer = chain.outer[first as usize];
-                if in_cavity(outer.triangle()) {
-                    inner_links.push((join, outer, mesh.segment_of(outer)));
-                } else {
-                    outer_links.push((join, outer));
+        for (chain, range) in [
+            (&mut *left, left_range.clone()),
+            (&mut *right, right_range.clone()),
+        ] {
+            let edges = range.start..range.end - 1;
+            for (outer, &inner) in chain.outer[edges.clone()]
+                .iter_mut()
+                .zip(&chain.inner[edges])
+            {
+                let t = outer.triangle();
+                let (word, mask) = filter_bit(t);
+                if filter[word] & mask != 0 && cavity_of[t.index()] == *serial {
+                    inner_links.push((inner, *outer, mesh.segment_of(*outer)));
+                    *outer = EdgeId::NONE;
                 }
-            };
-            if last == first + 1 {
-                join_boundary(first, join);
-                continue;
-            }
-            let (v, points) = (&chain.vertices, &chain.points);
-            let (u, w) = (points[first as usize], points[last as usize]);
-            // A triangle's worth of polygon has its apex already: no circle to compare.
-            let apex = if last == first + 2 {
-                first + 1
-            } else {
-                first
-                    + 1
-                    + P::smallest_circle(u, w, &points[first as usize + 1..last as usize]) as u32
-            };
-            if P::orient2d(u, w, points[apex as usize]) <= 0.0 {
-                return false;
-            }
-            let t = slots[triangles.len()];
-            let corners = [v[first as usize], v[last as usize], v[apex as usize]];
-            let join = if join == EdgeId::NONE && matches!(polygon, Polygon::Right) {
-                // The right polygon's base b → a is the twin of the left one's a → b, which is the
-                // first new triangle's base (the left polygon is planned first).
-                slots[0].edge(0)
-            } else {
-                join
-            };
-            triangles.push((corners, join));
-            // Triangle (u, w, c): w → c at 3t + 1 faces the sub-polygon (apex … last), c → u at
-            // 3t + 2 the sub-polygon (first … apex). Boundary edges are joined at once (the order
-            // of the joins does not matter); the others wait on the stack, in the same order as
-            // if the boundary edges were stacked too (they make no triangles).
-            if last == apex + 1 {
-                join_boundary(apex, t.edge(1));
-            } else {
-                tasks.push((polygon, apex, last, t.edge(1)));
-            }
-            if apex == first + 1 {
-                join_boundary(first, t.edge(2));
-            } else {
-                tasks.push((polygon, first, apex, t.edge(2)));
             }
         }
-        debug_assert_eq!(triangles.len(), slots.len());
         if !inner_links.is_empty() {
             // Each such edge came up twice, as old half-edge h and as its old twin: pair the two
             // new half-edges by the edge's smaller old half-edge.
@@ -231,16 +232,12 @@ impl<P: Predicates> Constrainer<P> {
 
         // Commit: the slots' triangles are rewritten, joined to each other and to the outside.
         let mesh = self.inserter.mesh_mut();
-        for (&t, &(corners, join)) in slots.iter().zip(triangles.iter()) {
-            // Every cavity vertex is a corner of a new triangle: its outgoing half-edge is
-            // refreshed here (the old one may have been in the cavity).
-            mesh.rewrite_triangle(t, corners);
-            if join != EdgeId::NONE {
-                mesh.link(t.edge(0), join);
-            }
-        }
-        for &(inner, outer) in outer_links.iter() {
-            mesh.link_to_outer(inner, outer);
+        // Every cavity vertex is a corner of a new triangle: its outgoing half-edge is refreshed
+        // there (the old one may have been in the cavity).
+        mesh.rewrite_triangles(slots, triangles);
+        for (chain, range) in [(&*left, left_range), (&*right, right_range)] {
+            let edges = range.start..range.end - 1;
+            mesh.link_all_to_outer(&chain.inner[edges.clone()], &chain.outer[edges]);
         }
         for pair in inner_links.chunks_exact(2) {
             // The segment did not cross this edge, so it may be a segment: it stays one.
@@ -302,5 +299,76 @@ impl<P: Predicates> Constrainer<P> {
         self.inserter.mesh_mut().set_segment(e, id);
         self.restore_delaunay(new_edges);
         Ok(())
+    }
+}
+
+/// Plans the constrained Delaunay triangulation of one polygon of the cavity (its vertices in
+/// order, the first and last being the segment's ends): top-down from the base (the segment),
+/// each sub-polygon's base joined to the half-edge of its parent triangle (Anglada 1997). A
+/// polygon's base makes a triangle with the chain vertex whose circle through the base holds no
+/// other chain vertex ([`Predicates::smallest_circle`]: the first one when several are
+/// cocircular), and the two sub-chains on either side of it recurse.
+struct Planner<'a> {
+    vertices: &'a [VertexId],
+    points: &'a [Point],
+    /// Written per chain edge: the new half-edge on it (see [`Chain`]).
+    inner: &'a mut [EdgeId],
+    slots: &'a [TriangleId],
+    triangles: &'a mut [([VertexId; 3], EdgeId)],
+}
+
+impl Planner<'_> {
+    /// Plans the polygon's triangles into the slots from `*planned` on (advancing it), the
+    /// first one's base joined to `join`; false if a triangle would not be counter-clockwise.
+    /// The sub-polygons are taken depth first, the one before the apex first.
+    #[inline(always)]
+    fn plan<P: Predicates>(
+        self,
+        tasks: &mut Vec<(u32, u32, EdgeId)>,
+        planned: &mut usize,
+        join: EdgeId,
+    ) -> bool {
+        let Planner {
+            vertices: v,
+            points,
+            inner,
+            slots,
+            triangles,
+        } = self;
+        tasks.clear();
+        tasks.push((0, v.len() as u32 - 1, join));
+        while let Some((first, last, join)) = tasks.pop() {
+            let (u, w) = (points[first as usize], points[last as usize]);
+            // A triangle's worth of polygon has its apex already: no circle to compare.
+            let apex = if last == first + 2 {
+                first + 1
+            } else {
+                first
+                    + 1
+                    + P::smallest_circle(u, w, &points[first as usize + 1..last as usize]) as u32
+            };
+            if P::orient2d(u, w, points[apex as usize]) <= 0.0 {
+                return false;
+            }
+            let t = slots[*planned];
+            triangles[*planned] = (
+                [v[first as usize], v[last as usize], v[apex as usize]],
+                join,
+            );
+            *planned += 1;
+            // Triangle (u, w, c): w → c at 3t + 1 faces the sub-polygon (apex … last), c → u at
+            // 3t + 2 the sub-polygon (first … apex); a side on the chain is a boundary edge.
+            if last == apex + 1 {
+                inner[apex as usize] = t.edge(1);
+            } else {
+                tasks.push((apex, last, t.edge(1)));
+            }
+            if apex == first + 1 {
+                inner[first as usize] = t.edge(2);
+            } else {
+                tasks.push((first, apex, t.edge(2)));
+            }
+        }
+        true
     }
 }

@@ -36,7 +36,7 @@ mod snap;
 #[cfg(test)]
 mod tests;
 
-use cavity::{Chain, Polygon};
+use cavity::CavityScratch;
 
 /// A vertex created where two segments cross: it lies on the edge from `from` to `to` at
 /// parameter `t` (for interpolating attributes).
@@ -95,18 +95,6 @@ pub struct Constrainer<P: Predicates> {
     crossed_pairs: HashSet<(u32, u32)>,
 }
 
-/// The size of [`Scratch::cavity_filter`], in 64-bit words.
-const CAVITY_FILTER_WORDS: usize = 16;
-
-/// The bit of triangle `t` in [`Scratch::cavity_filter`]: (word, mask), from a multiplicative
-/// hash (neighbouring slots spread over the words).
-#[inline(always)]
-fn cavity_filter_bit(t: TriangleId) -> (usize, u64) {
-    let bits = (CAVITY_FILTER_WORDS * 64).trailing_zeros();
-    let hash = t.raw().wrapping_mul(0x9E37_79B1) >> (32 - bits);
-    ((hash >> 6) as usize, 1 << (hash & 63))
-}
-
 /// Buffers of segment insertion, kept between segments so that inserting one allocates nothing.
 #[derive(Clone, Default)]
 struct Scratch {
@@ -115,31 +103,8 @@ struct Scratch {
     /// The half-edges the walk crossed, in order; each runs from the right of the segment to its
     /// left, in the triangle before the crossing.
     crossed: Vec<EdgeId>,
-    /// The cavity's two polygons: [`Polygon::Left`] runs from the segment's start to its end
-    /// along the vertices left of it, [`Polygon::Right`] from the end back to the start along
-    /// those right of it.
-    left: Chain,
-    right: Chain,
-    /// The triangle slots of the cavity, reused by its new triangles.
-    slots: Vec<TriangleId>,
-    /// Sub-polygons still to triangulate: (polygon, first, last, half-edge to join to the base).
-    tasks: Vec<(Polygon, u32, u32, EdgeId)>,
-    /// The new triangles: corners (base origin, base destination, apex) and the half-edge their
-    /// base is joined to (`NONE` for the first one, whose base is the segment).
-    triangles: Vec<([VertexId; 3], EdgeId)>,
-    /// Pairs (new half-edge, untouched half-edge outside the cavity) to join as twins.
-    outer_links: Vec<(EdgeId, EdgeId)>,
-    /// Per triangle slot, the serial number of the last cavity that held it (to tell in O(1)
-    /// whether a half-edge lies in the current cavity); grown with the mesh.
-    cavity_of: Vec<u32>,
-    /// A bit per hash of the current cavity's slots: a clear bit rules a triangle out without
-    /// reading `cavity_of` (a cache miss per boundary edge otherwise).
-    cavity_filter: [u64; CAVITY_FILTER_WORDS],
-    /// The serial number of the current cavity (never 0, the mark of no cavity).
-    cavity_serial: u32,
-    /// Triples (new half-edge, old half-edge inside the cavity, its segment id) for boundary
-    /// edges with the cavity on both sides; see [`Constrainer::retriangulate_cavity`].
-    inner_links: Vec<(EdgeId, EdgeId, u32)>,
+    /// Buffers of the cavity retriangulation.
+    cavity: CavityScratch,
 }
 
 impl<P: Predicates> Constrainer<P> {
@@ -376,7 +341,7 @@ impl<P: Predicates> Constrainer<P> {
         // for `b` among the neighbours first, which needs no point and no predicate. (Then no
         // other neighbour lies on the ray to `b` and no wedge strictly contains it, so the search
         // below would find the same edge.)
-        if let Some(e) = mesh.star(a).find(|&e| mesh.dest(e) == b) {
+        if let Some(e) = edge_between(mesh, a, b) {
             let beside = |pu: Point, pv: Point, pw: Point| {
                 on_line(P::orient2d(pu, pv, pw), pu, pv) && along(pu, pw, pv) && before(pu, pw, pv)
             };
@@ -598,6 +563,30 @@ impl<P: Predicates> Constrainer<P> {
                 .filter(|&t| !self.inserter.mesh().is_ghost(t)),
             Location::Outside(_) => None,
         }
+    }
+}
+
+/// The half-edge from `a` to `b` if they are neighbours ([`Mesh::find_edge`]'s answer, the edge
+/// being unique), by a leaner turn around `a`: leaving the triangle `(a, x, y)` of half-edge
+/// `a → x` through `y → a`, whose twin is the next half-edge `a → y`, the corner `y` read there
+/// is that half-edge's destination (no `next` to compute, no second read).
+fn edge_between(mesh: &Mesh, a: VertexId, b: VertexId) -> Option<EdgeId> {
+    let start = mesh.vertex_edge(a)?;
+    let mut e = start;
+    loop {
+        let back = e.prev(); // y → a
+        let f = mesh.twin(back); // a → y
+        if f == EdgeId::NONE {
+            // An open star (a boundary not covered by ghosts): the general search.
+            return mesh.find_edge(a, b);
+        }
+        if mesh.origin(back) == b {
+            return Some(f);
+        }
+        if f == start {
+            return None;
+        }
+        e = f;
     }
 }
 
