@@ -21,6 +21,7 @@ pub mod mesh;
 pub mod options;
 pub mod pipeline;
 pub mod scaling;
+mod threads;
 
 pub use data::{Hooks, Input, Output, Phase, Progress, VoronoiDiagram, VoronoiOutput};
 pub use error::Error;

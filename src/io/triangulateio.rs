@@ -256,7 +256,7 @@ unsafe fn transfer_all(transfers: &[Transfer<'_>]) -> Result<(), Error> {
         }
     }
     let total: usize = transfers.iter().map(|t| t.bytes.len()).sum();
-    let two_cores = std::thread::available_parallelism().is_ok_and(|n| n.get() >= 2);
+    let two_cores = crate::threads::two_cores();
     // Each destination: where its bytes go (an address, so that the halves can cross threads).
     let copies: Vec<(usize, &[u8])> = transfers
         .iter()

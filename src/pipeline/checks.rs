@@ -41,7 +41,7 @@ pub(super) fn checked_points(input: &Input<'_>) -> Result<(Vec<Point>, Magnitude
     let flat = &input.points[..2 * n];
     let mut points: Vec<Point> = Vec::with_capacity(n);
     let spare = &mut points.spare_capacity_mut()[..n];
-    let two_cores = std::thread::available_parallelism().is_ok_and(|c| c.get() >= 2);
+    let two_cores = crate::threads::two_cores();
     let magnitudes = if two_cores && n >= PARALLEL_COPY {
         let half = n / 2;
         let (low, high) = spare.split_at_mut(half);

@@ -38,7 +38,7 @@ fn delaunay_with<P: Predicates>(
         Algorithm::Default | Algorithm::Sweepline => order::OrderKind::Multiscale,
     };
     let mut points = points;
-    let two_cores = std::thread::available_parallelism().is_ok_and(|n| n.get() >= 2);
+    let two_cores = crate::threads::two_cores();
     if kind == order::OrderKind::Multiscale
         && two_cores
         && points.len() >= merge::PARALLEL_THRESHOLD

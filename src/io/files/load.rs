@@ -22,7 +22,7 @@ pub fn read_file(path: &Path) -> io::Result<Vec<u8>> {
     use std::os::unix::fs::FileExt;
     let mut file = File::open(path)?;
     let length = file.metadata()?.len();
-    let two_cores = std::thread::available_parallelism().is_ok_and(|n| n.get() >= 2);
+    let two_cores = crate::threads::two_cores();
     let size = match usize::try_from(length) {
         Ok(size) if length >= PARALLEL_READ_BYTES && two_cores => size,
         _ => return fs::read(path),

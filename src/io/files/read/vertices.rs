@@ -51,7 +51,7 @@ pub(super) fn read_vertices(
         attributes: Vec::with_capacity(reserve(count, attribute_count)),
         markers: has_markers.then(|| Vec::with_capacity(reserve(count, 1))),
     };
-    let two_cores = std::thread::available_parallelism().is_ok_and(|n| n.get() >= 2);
+    let two_cores = crate::threads::two_cores();
     if count >= PARALLEL_VERTICES && two_cores {
         read_rows_on_two_threads(lines, columns, count, &mut node)?;
     } else {
