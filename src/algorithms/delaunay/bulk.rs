@@ -124,7 +124,7 @@ impl<P: Predicates> Builder<P> {
     #[inline(always)]
     fn locate(&mut self, p: Point) -> Location {
         let mut t = self.last;
-        if self.mesh.is_ghost(t) {
+        if t.edges().iter().any(|&e| self.corner(e) == GHOST) {
             // Start from the real triangle across the ghost's hull edge.
             for e in t.edges() {
                 if self.corner(e) != GHOST && self.corner(e.next()) != GHOST {
