@@ -192,7 +192,9 @@ impl Mesh {
                     // (a, b, c) and (b, a, d) become (a, d, c) here and (d, b, c) in f's
                     // triangle, whose slot 0 is `g`; the half-edge c → a keeps its slot and its
                     // twin.
-                    let g = f / 3 * 3;
+                    // (`g` from `f_prev`, of the same triangle: divided, `f` would turn the test
+                    // above into a division too.)
+                    let g = f_prev / 3 * 3;
                     let f_next = if f - g == 2 { g } else { f + 1 };
                     let tw_ad = twin(f_next);
                     let tw_db = twin(f_prev);
