@@ -16,6 +16,13 @@ pub trait Predicates: Copy + Send + Sync + 'static {
     /// negative if outside, zero if on it.
     fn incircle(a: Point, b: Point, c: Point, d: Point) -> f64;
 
+    /// Whether `incircle(a, b, c, d) > 0.0`: the test as Lawson's flips ask it, which lets the
+    /// filter answer from one comparison on each side of its error bound.
+    #[inline(always)]
+    fn incircle_positive(a: Point, b: Point, c: Point, d: Point) -> bool {
+        Self::incircle(a, b, c, d) > 0.0
+    }
+
     /// The index of the candidate (of a non-empty list) chosen as the apex over base `u → w`:
     /// the first candidate, replaced by each later one that lies strictly inside the circle
     /// through `u`, `w` and the current choice. When all candidates lie left of `u → w`, whose
@@ -132,24 +139,23 @@ impl Predicates for Exact {
 
     #[inline(always)]
     fn incircle(a: Point, b: Point, c: Point, d: Point) -> f64 {
-        let (adx, ady) = (a[0] - d[0], a[1] - d[1]);
-        let (bdx, bdy) = (b[0] - d[0], b[1] - d[1]);
-        let (cdx, cdy) = (c[0] - d[0], c[1] - d[1]);
-        let (bdxcdy, cdxbdy) = (bdx * cdy, cdx * bdy);
-        let (cdxady, adxcdy) = (cdx * ady, adx * cdy);
-        let (adxbdy, bdxady) = (adx * bdy, bdx * ady);
-        let alift = adx * adx + ady * ady;
-        let blift = bdx * bdx + bdy * bdy;
-        let clift = cdx * cdx + cdy * cdy;
-        let det = alift * (bdxcdy - cdxbdy) + blift * (cdxady - adxcdy) + clift * (adxbdy - bdxady);
-        let permanent = (bdxcdy.abs() + cdxbdy.abs()) * alift
-            + (cdxady.abs() + adxcdy.abs()) * blift
-            + (adxbdy.abs() + bdxady.abs()) * clift;
-        let errbound = ICC_ERRBOUND_A * permanent;
+        let (det, errbound) = incircle_filter(a, b, c, d);
         if det > errbound || -det > errbound {
             return det;
         }
         robust::incircle(coord(a), coord(b), coord(c), coord(d))
+    }
+
+    #[inline(always)]
+    fn incircle_positive(a: Point, b: Point, c: Point, d: Point) -> bool {
+        let (det, errbound) = incircle_filter(a, b, c, d);
+        if det > errbound {
+            return true;
+        }
+        if -det > errbound {
+            return false;
+        }
+        robust::incircle(coord(a), coord(b), coord(c), coord(d)) > 0.0
     }
 
     /// The same choice as the default, with the circle's terms computed once per candidate
@@ -166,6 +172,28 @@ impl Predicates for Exact {
         }
         best
     }
+}
+
+/// Shewchuk's in-circle determinant in floating point (rows `a`, `b`, `c` relative to `d`) and
+/// the bound on its error (his `ICC_ERRBOUND_A` times the permanent): when `|det|` exceeds the
+/// bound, its sign is the exact one.
+#[inline(always)]
+fn incircle_filter(a: Point, b: Point, c: Point, d: Point) -> (f64, f64) {
+    let (adx, ady) = (a[0] - d[0], a[1] - d[1]);
+    let (bdx, bdy) = (b[0] - d[0], b[1] - d[1]);
+    let (cdx, cdy) = (c[0] - d[0], c[1] - d[1]);
+    let (bdxcdy, cdxbdy) = (bdx * cdy, cdx * bdy);
+    let (cdxady, adxcdy) = (cdx * ady, adx * cdy);
+    let (adxbdy, bdxady) = (adx * bdy, bdx * ady);
+    let alift = adx * adx + ady * ady;
+    let blift = bdx * bdx + bdy * bdy;
+    let clift = cdx * cdx + cdy * cdy;
+    let det = alift * (bdxcdy - cdxbdy) + blift * (cdxady - adxcdy) + clift * (adxbdy - bdxady);
+    let permanent = (bdxcdy.abs() + cdxbdy.abs()) * alift
+        + (cdxady.abs() + adxcdy.abs()) * blift
+        + (adxbdy.abs() + bdxady.abs()) * clift;
+    let errbound = ICC_ERRBOUND_A * permanent;
+    (det, errbound)
 }
 
 impl Predicates for Inexact {

@@ -142,44 +142,82 @@ impl Mesh {
         start: TriangleId,
         ghosts: Ghosts,
     ) -> TriangleId {
-        const NEXT_SLOT: [u32; 3] = [1, 2, 0];
-        const PREV_SLOT: [u32; 3] = [2, 0, 1];
         debug_assert!(self.segment.is_empty() && self.vertex_edge.is_empty());
+        // The arrays through raw pointers held in registers: through `self`, each store into
+        // them would make the compiler reload the vectors' pointers (it cannot tell they do not
+        // alias), some ten loads per edge checked.
+        let points = self.points.as_ptr();
+        let corners = self.corners.as_mut_ptr();
+        let twins = self.twins.as_mut_ptr();
         // SAFETY (all reads and writes below): half-edges of triangles of the ring and of their
-        // neighbours, by the contract; corners read as points are checked finite first
-        // (`is_illegal`).
+        // neighbours, by the contract, so indices below the arrays' lengths; points are read
+        // only for corners other than GHOST, vertices with points by the contract.
         unsafe {
-            let c = self.corner_unchecked(start.edge(2));
-            let first = self.corner_unchecked(start.edge(0));
-            let mut t = start;
+            let corner = |e: u32| *corners.add(e as usize);
+            let twin = |e: u32| *twins.add(e as usize);
+            let point = |v: u32| *points.add(v as usize);
+            let link = |x: u32, y: u32| {
+                *twins.add(x as usize) = y;
+                *twins.add(y as usize) = x;
+            };
+            // The ring's triangle is (a, b, c), its slot-0 half-edge `e` from a to b checked next;
+            // `a` and `b` are carried from one check to the next (a flip makes `b` the vertex `d`
+            // across, a kept edge makes `b` the next triangle's `a`).
+            let mut e = 3 * start.raw();
+            let c = corner(e + 2);
+            let first = corner(e);
+            let pc = point(c);
+            let (mut a, mut b) = (first, corner(e + 1));
             loop {
-                let e = t.edge(0);
-                let (a, b) = (self.corner_unchecked(e), self.corner_unchecked(t.edge(1)));
-                let f = self.twin_unchecked(e);
-                let (u, slot) = (f.triangle(), f.slot() as usize);
-                let (f_next, f_prev) = (u.edge(NEXT_SLOT[slot]), u.edge(PREV_SLOT[slot]));
-                let d = self.corner_unchecked(f_prev);
-                let quad = Quad { e, f, a, b, c, d };
-                if self.is_illegal::<P, false>(&quad, ghosts) {
-                    // (a, b, c) and (b, a, d) become (a, d, c) in `t` and (d, b, c) in `u`; the
-                    // half-edge c → a keeps its slot and its twin.
-                    let tw_ad = self.twin_unchecked(f_next);
-                    let tw_db = self.twin_unchecked(f_prev);
-                    let tw_bc = self.twin_unchecked(t.edge(1));
-                    self.set_corner_unchecked(t.edge(1), d);
-                    self.set_corners_unchecked(u, [d, b, c]);
-                    self.link_unchecked(t.edge(0), tw_ad);
-                    self.link_unchecked(t.edge(1), u.edge(2));
-                    self.link_unchecked(u.edge(0), tw_db);
-                    self.link_unchecked(u.edge(1), tw_bc);
+                let f = twin(e);
+                // `f`'s predecessor in its triangle, from a divisibility test (`f % 3 == 0`
+                // compiles to a multiplication and a comparison) instead of a division.
+                let f_prev = if f % 3 == 0 { f + 2 } else { f - 1 };
+                let d = corner(f_prev);
+                let illegal = if a != GHOST.raw() && b != GHOST.raw() && d != GHOST.raw() {
+                    P::incircle_positive(point(b), point(a), point(d), pc)
+                } else {
+                    let v = VertexId::new;
+                    let quad = Quad {
+                        e: EdgeId::new(e),
+                        f: EdgeId::new(f),
+                        a: v(a),
+                        b: v(b),
+                        c: v(c),
+                        d: v(d),
+                    };
+                    self.is_illegal_near_ghost::<P>(&quad, ghosts)
+                };
+                if illegal {
+                    // (a, b, c) and (b, a, d) become (a, d, c) here and (d, b, c) in f's
+                    // triangle, whose slot 0 is `g`; the half-edge c → a keeps its slot and its
+                    // twin.
+                    // (`g` from `f_prev`, of the same triangle: divided, `f` would turn the test
+                    // above into a division too.)
+                    let g = f_prev / 3 * 3;
+                    let f_next = if f - g == 2 { g } else { f + 1 };
+                    let tw_ad = twin(f_next);
+                    let tw_db = twin(f_prev);
+                    let tw_bc = twin(e + 1);
+                    *corners.add(e as usize + 1) = d;
+                    *corners.add(g as usize) = d;
+                    *corners.add(g as usize + 1) = b;
+                    *corners.add(g as usize + 2) = c;
+                    link(e, tw_ad);
+                    link(e + 1, g + 2);
+                    link(g, tw_db);
+                    link(g + 1, tw_bc);
+                    b = d;
                     continue;
                 }
                 if b == first {
-                    return t;
+                    return EdgeId::new(e).triangle();
                 }
                 // The next triangle counter-clockwise around `c`: across b → c, whose twin
-                // c → b is its slot 2.
-                t = self.twin_unchecked(t.edge(1)).triangle();
+                // c → b is its slot 2, two after its slot 0.
+                e = twin(e + 1) - 2;
+                a = b;
+                b = corner(e + 1);
             }
         }
     }
@@ -237,6 +275,15 @@ impl Mesh {
                 d: self.read_corner::<CHECKED>(next_and_prev(f, false).1),
             }
         }
+    }
+
+    /// [`Self::is_illegal`] for a quad with a ghost corner, out of the ring's loop (rare: only
+    /// edges at the hull), with bounds checks.
+    #[cold]
+    #[inline(never)]
+    fn is_illegal_near_ghost<P: Predicates>(&self, quad: &Quad, ghosts: Ghosts) -> bool {
+        // SAFETY: CHECKED = true reads with bounds checks only.
+        unsafe { self.is_illegal::<P, true>(quad, ghosts) }
     }
 
     /// Whether the edge of `quad` must be flipped.

@@ -139,6 +139,49 @@ impl Mesh {
         TriangleId::new((len / 3) as u32)
     }
 
+    /// [`Mesh::split_triangle`] for a mesh that tracks nothing (the bulk build), without bounds
+    /// checks: `(a, b, c)` becomes `(a, b, p)` in `t`, `(b, c, p)` and `(c, a, p)` are appended,
+    /// all linked. Returns `t` (`p` in slot 2). Through raw pointers held in registers, as the
+    /// flips around `p` are ([`Mesh::legalize_around_unchecked`]).
+    ///
+    /// # Safety
+    /// `t` is a triangle of the mesh, its twins half-edges of the mesh; the mesh tracks nothing.
+    #[inline(always)]
+    pub unsafe fn split_triangle_untracked(&mut self, t: TriangleId, p: VertexId) -> TriangleId {
+        debug_assert!(
+            self.segment.is_empty() && self.vertex_edge.is_empty() && self.tag.is_empty()
+        );
+        let len = self.corners.len();
+        if self.corners.capacity() - len < 6 || self.twins.capacity() - len < 6 {
+            // Not reached in the bulk build (see `push_two_triangles`).
+            self.corners.reserve(6);
+            self.twins.reserve(6);
+        }
+        let (corners, twins) = (self.corners.as_mut_ptr(), self.twins.as_mut_ptr());
+        // The new triangles' first half-edges: (b, c, p) from `n`, (c, a, p) from `n + 3`.
+        let (e, n, p) = (3 * t.index(), len as u32, p.raw());
+        // SAFETY: `e .. e + 3` and the twins read there are half-edges of the mesh (the
+        // contract); both arrays have room for 6 more items (checked above), each written before
+        // the length covers it.
+        unsafe {
+            let [a, b, c] = [0, 1, 2].map(|k| *corners.add(e + k));
+            let (tw_bc, tw_ca) = (*twins.add(e + 1), *twins.add(e + 2));
+            let new_corners = [b, c, p, c, a, p];
+            let (e1, e2) = (e as u32 + 1, e as u32 + 2);
+            let new_twins = [tw_bc, n + 5, e1, tw_ca, e2, n + 1];
+            std::ptr::copy_nonoverlapping(new_corners.as_ptr(), corners.add(len), 6);
+            std::ptr::copy_nonoverlapping(new_twins.as_ptr(), twins.add(len), 6);
+            self.corners.set_len(len + 6);
+            self.twins.set_len(len + 6);
+            *corners.add(e + 2) = p;
+            *twins.add(e + 1) = n + 2;
+            *twins.add(e + 2) = n + 4;
+            *twins.add(tw_bc as usize) = n;
+            *twins.add(tw_ca as usize) = n + 3;
+        }
+        t
+    }
+
     /// Sets the twin of `e` alone (the caller links the other side), without a bounds check.
     ///
     /// # Safety

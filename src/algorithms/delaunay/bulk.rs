@@ -124,7 +124,7 @@ impl<P: Predicates> Builder<P> {
     #[inline(always)]
     fn locate(&mut self, p: Point) -> Location {
         let mut t = self.last;
-        if self.mesh.is_ghost(t) {
+        if t.edges().iter().any(|&e| self.corner(e) == GHOST) {
             // Start from the real triangle across the ghost's hull edge.
             for e in t.edges() {
                 if self.corner(e) != GHOST && self.corner(e.next()) != GHOST {
@@ -231,28 +231,11 @@ impl<P: Predicates> Builder<P> {
         location
     }
 
-    /// [`Mesh::split_triangle`] without the tracking: `(a, b, c)` becomes `(a, b, p)` in `t`,
-    /// `(b, c, p)` and `(c, a, p)` appended, each linked once. Returns `t` (`p` in slot 2).
+    /// [`Mesh::split_triangle_untracked`]: `t` becomes `(a, b, p)`, returned (`p` in slot 2).
     #[inline(always)]
     fn split_triangle(&mut self, t: TriangleId, p: VertexId) -> TriangleId {
-        let [a, b, c] = t.edges().map(|e| self.corner(e));
-        let (tw_bc, tw_ca) = (self.twin(t.edge(1)), self.twin(t.edge(2)));
-        let t1 = TriangleId::new(self.mesh.triangle_count());
-        let t2 = TriangleId::new(t1.raw() + 1);
-        self.mesh.push_two_triangles(
-            [b, c, p, c, a, p],
-            [tw_bc, t2.edge(2), t.edge(1), tw_ca, t.edge(2), t1.edge(1)],
-        );
-        // SAFETY: `t` is a triangle of the mesh (a walk found it), `tw_bc` and `tw_ca` are
-        // half-edges of the mesh (its twins), `t1` and `t2` were just appended. `t` keeps its
-        // half-edge a → b and that one's twin.
-        unsafe {
-            self.mesh.set_corner_unchecked(t.edge(2), p);
-            self.mesh.set_twin_unchecked(t.edge(1), t1.edge(2));
-            self.mesh.set_twin_unchecked(t.edge(2), t2.edge(1));
-            self.mesh.set_twin_unchecked(tw_bc, t1.edge(0));
-            self.mesh.set_twin_unchecked(tw_ca, t2.edge(0));
-        }
-        t
+        // SAFETY: `t` is a triangle of the mesh (a walk found it), its twins half-edges of the
+        // mesh (complete and mutual); the bulk build's mesh tracks nothing.
+        unsafe { self.mesh.split_triangle_untracked(t, p) }
     }
 }
