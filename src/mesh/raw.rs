@@ -86,17 +86,6 @@ impl Mesh {
         };
     }
 
-    /// Sets the corner half-edge `e` starts at, without a bounds check.
-    ///
-    /// # Safety
-    /// `e` is a half-edge of the mesh.
-    #[inline(always)]
-    pub unsafe fn set_corner_unchecked(&mut self, e: EdgeId, v: VertexId) {
-        debug_assert!(e.index() < self.corners.len());
-        // SAFETY: by the contract.
-        unsafe { *self.corners.get_unchecked_mut(e.index()) = v.raw() };
-    }
-
     /// [`Mesh::link`] without bounds checks.
     ///
     /// # Safety
@@ -109,34 +98,6 @@ impl Mesh {
             *self.twins.get_unchecked_mut(a.index()) = b.raw();
             *self.twins.get_unchecked_mut(b.index()) = a.raw();
         }
-    }
-
-    /// Appends two triangles with the given corners and twins (three each), for a mesh that
-    /// tracks nothing (the bulk build); returns the first one. The twins named must be linked
-    /// back by the caller (until then the twins are not mutual). No reallocation when the mesh
-    /// was made with room for them.
-    #[inline(always)]
-    pub fn push_two_triangles(&mut self, corners: [VertexId; 6], twins: [EdgeId; 6]) -> TriangleId {
-        debug_assert!(
-            self.segment.is_empty() && self.vertex_edge.is_empty() && self.tag.is_empty()
-        );
-        let len = self.corners.len();
-        if self.corners.capacity() - len < 6 || self.twins.capacity() - len < 6 {
-            // Not reached in the bulk build: n points make at most 2n - 2 triangle slots, and
-            // 2n + 2 are reserved.
-            self.corners.reserve(6);
-            self.twins.reserve(6);
-        }
-        let (corners, twins) = (corners.map(VertexId::raw), twins.map(EdgeId::raw));
-        // SAFETY: both vectors have room for 6 more items (checked above); every new item is
-        // written before the length covers it.
-        unsafe {
-            std::ptr::copy_nonoverlapping(corners.as_ptr(), self.corners.as_mut_ptr().add(len), 6);
-            std::ptr::copy_nonoverlapping(twins.as_ptr(), self.twins.as_mut_ptr().add(len), 6);
-            self.corners.set_len(len + 6);
-            self.twins.set_len(len + 6);
-        }
-        TriangleId::new((len / 3) as u32)
     }
 
     /// [`Mesh::split_triangle`] for a mesh that tracks nothing (the bulk build), without bounds
@@ -153,7 +114,8 @@ impl Mesh {
         );
         let len = self.corners.len();
         if self.corners.capacity() - len < 6 || self.twins.capacity() - len < 6 {
-            // Not reached in the bulk build (see `push_two_triangles`).
+            // Not reached in the bulk build: n points make at most 2n - 2 triangle slots, and
+            // 2n + 2 are reserved.
             self.corners.reserve(6);
             self.twins.reserve(6);
         }
@@ -180,17 +142,6 @@ impl Mesh {
             *twins.add(tw_ca as usize) = n + 3;
         }
         t
-    }
-
-    /// Sets the twin of `e` alone (the caller links the other side), without a bounds check.
-    ///
-    /// # Safety
-    /// `e` is a half-edge of the mesh.
-    #[inline(always)]
-    pub unsafe fn set_twin_unchecked(&mut self, e: EdgeId, twin: EdgeId) {
-        debug_assert!(e.index() < self.twins.len());
-        // SAFETY: by the contract.
-        unsafe { *self.twins.get_unchecked_mut(e.index()) = twin.raw() };
     }
 
     /// [`Mesh::with_capacity`] whose twin array is `twins`' allocation (emptied, grown to the
