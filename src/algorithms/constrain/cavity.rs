@@ -17,6 +17,20 @@ fn filter_bit(t: TriangleId) -> (usize, u64) {
     ((hash >> 6) as usize, 1 << (hash & 63))
 }
 
+/// The half-edges after and before `f` in its triangle `t` (`f.next()`, `f.prev()`), from `f`'s
+/// slot `f − 3t` without another modulo.
+#[inline(always)]
+fn successor_and_predecessor(f: EdgeId, t: TriangleId) -> (EdgeId, EdgeId) {
+    let base = t.edge(0).raw();
+    let slot = f.raw() - base;
+    // Slot 0 → (1, 2), 1 → (2, 0), 2 → (0, 1): the pair packed as two 2-bit fields per slot.
+    let pair = 0b01_00_00_10_10_01u32 >> (4 * slot);
+    (
+        EdgeId::new(base + (pair & 3)),
+        EdgeId::new(base + ((pair >> 2) & 3)),
+    )
+}
+
 /// The cavity's two polygons, each a chain of vertices from one end of the segment to the other
 /// (the left one from `a` to `b`, the right one from `b` to `a`), written by index into buffers
 /// of `k + 2` entries for `k` crossed edges: the left chain from the front, the right one from
@@ -131,20 +145,24 @@ impl<P: Predicates> Constrainer<P> {
         let (mut left_len, mut right_start) = (2, k);
         for i in 0..k {
             let f = mesh.twin(crossed[i]); // left → right, in the next triangle of the cavity
-            slots[i + 1] = f.triangle();
-            let z = mesh.apex(f);
+            let t = f.triangle();
+            slots[i + 1] = t;
+            // f's successor and predecessor from the one division above (`next` and `prev`
+            // each take f modulo 3 again).
+            let (f_next, f_prev) = successor_and_predecessor(f, t);
+            let z = mesh.origin(f_prev);
             let pz = mesh.point(z);
             // The next crossed edge is right → z when z is on the left, z → left otherwise.
             let next = crossed.get(i + 1).copied();
-            if next.is_none_or(|h| h == f.next()) {
+            if next.is_none_or(|h| h == f_next) {
                 left.set(left_len, z, pz);
-                left.outer[left_len - 1] = mesh.twin(f.prev()); // left → z
+                left.outer[left_len - 1] = mesh.twin(f_prev); // left → z
                 left_len += 1;
             }
-            if next.is_none_or(|h| h == f.prev()) {
+            if next.is_none_or(|h| h == f_prev) {
                 right_start -= 1;
                 right.set(right_start, z, pz);
-                right.outer[right_start] = mesh.twin(f.next()); // z → right
+                right.outer[right_start] = mesh.twin(f_next); // z → right
             }
         }
         debug_assert!(left.vertices[left_len - 1] == b && right.vertices[right_start] == b);
@@ -335,9 +353,17 @@ impl Planner<'_> {
             slots,
             triangles,
         } = self;
-        tasks.clear();
-        tasks.push((0, v.len() as u32 - 1, join));
-        while let Some((first, last, join)) = tasks.pop() {
+        // A stack by index in a buffer of one entry per vertex: pending sub-polygons have
+        // disjoint interiors of at least one chain vertex each, so they never outnumber them
+        // (and no push needs a capacity check).
+        if tasks.len() < v.len() {
+            tasks.resize(v.len(), (0, 0, EdgeId::NONE));
+        }
+        tasks[0] = (0, v.len() as u32 - 1, join);
+        let mut pending = 1;
+        while pending > 0 {
+            pending -= 1;
+            let (first, last, join) = tasks[pending];
             let (u, w) = (points[first as usize], points[last as usize]);
             // A triangle's worth of polygon has its apex already: no circle to compare.
             let apex = if last == first + 2 {
@@ -361,12 +387,14 @@ impl Planner<'_> {
             if last == apex + 1 {
                 inner[apex as usize] = t.edge(1);
             } else {
-                tasks.push((apex, last, t.edge(1)));
+                tasks[pending] = (apex, last, t.edge(1));
+                pending += 1;
             }
             if apex == first + 1 {
                 inner[first as usize] = t.edge(2);
             } else {
-                tasks.push((first, apex, t.edge(2)));
+                tasks[pending] = (first, apex, t.edge(2));
+                pending += 1;
             }
         }
         true
