@@ -17,20 +17,6 @@ fn filter_bit(t: TriangleId) -> (usize, u64) {
     ((hash >> 6) as usize, 1 << (hash & 63))
 }
 
-/// The half-edges after and before `f` in its triangle `t` (`f.next()`, `f.prev()`), from `f`'s
-/// slot `f − 3t` without another modulo.
-#[inline(always)]
-fn successor_and_predecessor(f: EdgeId, t: TriangleId) -> (EdgeId, EdgeId) {
-    let base = t.edge(0).raw();
-    let slot = f.raw() - base;
-    // Slot 0 → (1, 2), 1 → (2, 0), 2 → (0, 1): the pair packed as two 2-bit fields per slot.
-    let pair = 0b01_00_00_10_10_01u32 >> (4 * slot);
-    (
-        EdgeId::new(base + (pair & 3)),
-        EdgeId::new(base + ((pair >> 2) & 3)),
-    )
-}
-
 /// The cavity's two polygons, each a chain of vertices from one end of the segment to the other
 /// (the left one from `a` to `b`, the right one from `b` to `a`), written by index into buffers
 /// of `k + 2` entries for `k` crossed edges: the left chain from the front, the right one from
@@ -145,11 +131,8 @@ impl<P: Predicates> Constrainer<P> {
         let (mut left_len, mut right_start) = (2, k);
         for i in 0..k {
             let f = mesh.twin(crossed[i]); // left → right, in the next triangle of the cavity
-            let t = f.triangle();
-            slots[i + 1] = t;
-            // f's successor and predecessor from the one division above (`next` and `prev`
-            // each take f modulo 3 again).
-            let (f_next, f_prev) = successor_and_predecessor(f, t);
+            slots[i + 1] = f.triangle();
+            let (f_next, f_prev) = Mesh::next_and_prev(f);
             let z = mesh.origin(f_prev);
             let pz = mesh.point(z);
             // The next crossed edge is right → z when z is on the left, z → left otherwise.
