@@ -10,6 +10,19 @@ use crate::geometry::Point;
 const G: u32 = GHOST.raw();
 
 impl Mesh {
+    /// The half-edges after and before `e` in its triangle (`e.next()`, `e.prev()`) from one
+    /// division by 3 (the two methods each take `e` modulo 3), for walks that need both.
+    #[inline(always)]
+    pub fn next_and_prev(e: EdgeId) -> (EdgeId, EdgeId) {
+        let base = 3 * (e.raw() / 3);
+        // Slot 0 → (1, 2), 1 → (2, 0), 2 → (0, 1): two 2-bit fields per slot.
+        let pair = 0b0100_0010_1001u32 >> (4 * (e.raw() - base));
+        (
+            EdgeId::new(base + (pair & 3)),
+            EdgeId::new(base + ((pair >> 2) & 3)),
+        )
+    }
+
     #[inline(always)]
     fn c(&self, e: u32) -> u32 {
         self.corners[e as usize]

@@ -51,14 +51,15 @@ impl<P: Predicates, F: Fn(f64) -> bool> Iterator for LineWalk<'_, P, F> {
             }
             State::Beyond(h) => {
                 let f = self.mesh.twin(h); // left → right in the next triangle
-                let z = self.mesh.apex(f);
+                let (f_next, f_prev) = Mesh::next_and_prev(f);
+                let z = self.mesh.origin(f_prev);
                 let oz = P::orient2d(self.pa, self.pb, self.mesh.point(z));
                 if (self.on_line)(oz) {
                     self.state = State::Done;
                     return Some(LineStep::Vertex(z));
                 }
                 // Right → z when z is left of the line, z → left otherwise.
-                let h = if oz > 0.0 { f.next() } else { f.prev() };
+                let h = if oz > 0.0 { f_next } else { f_prev };
                 self.state = State::Beyond(h);
                 Some(LineStep::Cross(h))
             }

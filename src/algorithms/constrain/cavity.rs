@@ -132,19 +132,20 @@ impl<P: Predicates> Constrainer<P> {
         for i in 0..k {
             let f = mesh.twin(crossed[i]); // left → right, in the next triangle of the cavity
             slots[i + 1] = f.triangle();
-            let z = mesh.apex(f);
+            let (f_next, f_prev) = Mesh::next_and_prev(f);
+            let z = mesh.origin(f_prev);
             let pz = mesh.point(z);
             // The next crossed edge is right → z when z is on the left, z → left otherwise.
             let next = crossed.get(i + 1).copied();
-            if next.is_none_or(|h| h == f.next()) {
+            if next.is_none_or(|h| h == f_next) {
                 left.set(left_len, z, pz);
-                left.outer[left_len - 1] = mesh.twin(f.prev()); // left → z
+                left.outer[left_len - 1] = mesh.twin(f_prev); // left → z
                 left_len += 1;
             }
-            if next.is_none_or(|h| h == f.prev()) {
+            if next.is_none_or(|h| h == f_prev) {
                 right_start -= 1;
                 right.set(right_start, z, pz);
-                right.outer[right_start] = mesh.twin(f.next()); // z → right
+                right.outer[right_start] = mesh.twin(f_next); // z → right
             }
         }
         debug_assert!(left.vertices[left_len - 1] == b && right.vertices[right_start] == b);
@@ -335,9 +336,17 @@ impl Planner<'_> {
             slots,
             triangles,
         } = self;
-        tasks.clear();
-        tasks.push((0, v.len() as u32 - 1, join));
-        while let Some((first, last, join)) = tasks.pop() {
+        // A stack by index in a buffer of one entry per vertex: pending sub-polygons have
+        // disjoint interiors of at least one chain vertex each, so they never outnumber them
+        // (and no push needs a capacity check).
+        if tasks.len() < v.len() {
+            tasks.resize(v.len(), (0, 0, EdgeId::NONE));
+        }
+        tasks[0] = (0, v.len() as u32 - 1, join);
+        let mut pending = 1;
+        while pending > 0 {
+            pending -= 1;
+            let (first, last, join) = tasks[pending];
             let (u, w) = (points[first as usize], points[last as usize]);
             // A triangle's worth of polygon has its apex already: no circle to compare.
             let apex = if last == first + 2 {
@@ -361,12 +370,14 @@ impl Planner<'_> {
             if last == apex + 1 {
                 inner[apex as usize] = t.edge(1);
             } else {
-                tasks.push((apex, last, t.edge(1)));
+                tasks[pending] = (apex, last, t.edge(1));
+                pending += 1;
             }
             if apex == first + 1 {
                 inner[first as usize] = t.edge(2);
             } else {
-                tasks.push((first, apex, t.edge(2)));
+                tasks[pending] = (first, apex, t.edge(2));
+                pending += 1;
             }
         }
         true
