@@ -70,6 +70,17 @@ impl Mesh {
         unsafe { *self.points.get_unchecked(v.index()) }
     }
 
+    /// Base pointers of the corner, twin and point arrays, for a read-only loop that keeps them
+    /// in registers (the bulk build's walk): valid while the mesh is not changed.
+    #[inline(always)]
+    pub fn raw_arrays(&self) -> (*const u32, *const u32, *const Point) {
+        (
+            self.corners.as_ptr(),
+            self.twins.as_ptr(),
+            self.points.as_ptr(),
+        )
+    }
+
     /// [`Mesh::set_corners`] without a bounds check.
     ///
     /// # Safety

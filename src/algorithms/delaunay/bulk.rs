@@ -55,6 +55,8 @@ pub(super) fn triangulate_in_order<P: Predicates>(
         mesh,
         last: TriangleId::new(0),
         rng: 0x9E37_79B9,
+        // At least 4 steps per triangle the build can make (`capacity` bounds them).
+        step_limit: u32::try_from(4 * capacity as u64 + 64).unwrap_or(u32::MAX),
         _predicates: Default::default(),
     };
     for u in (1..n).map(v) {
@@ -77,6 +79,8 @@ struct Builder<P: Predicates> {
     /// A triangle incident to the last inserted vertex: where the next walk starts.
     last: TriangleId,
     rng: u32,
+    /// Steps after which a walk is taken to circle (inexact predicates) and the scan is asked.
+    step_limit: u32,
     _predicates: std::marker::PhantomData<P>,
 }
 
@@ -159,67 +163,107 @@ impl<P: Predicates> Builder<P> {
                 |v| self.point(v),
             );
         };
-        // `f`: the half-edge entered through, from `q0` to `q1` (`p` strictly left of it).
-        let (mut f, mut q0, mut q1) = (self.twin(e), qb, qa);
-        let mut steps: u32 = 0;
-        let step_limit = 4 * self.mesh.triangle_count() + 64;
-        loop {
-            steps += 1;
-            if steps > step_limit {
-                // Only reachable with inexact predicates on hard input.
-                return self.locate_fallback(p);
+        // `f`: the half-edge entered through, from `q0` to `q1` (`p` strictly left of it). The
+        // coin's generator lives in a register for the walk, stored back once.
+        let mut rng = self.rng;
+        let walked = self.walk(self.twin(e), qb, qa, p, &mut rng);
+        self.rng = rng;
+        match walked {
+            Some(location) => location,
+            // Only reachable with inexact predicates on hard input.
+            None => self.locate_fallback(p),
+        }
+    }
+
+    /// The walk of [`Self::locate`] past its first triangle, entered through `f` (from `q0` to
+    /// `q1`, `p` strictly left of it); `None` after [`Self::step_limit`] steps. Through raw
+    /// pointers to the mesh's arrays held in registers, as the flips are
+    /// ([`Mesh::legalize_around_unchecked`]).
+    #[inline(always)]
+    fn walk(
+        &self,
+        f: EdgeId,
+        mut q0: Point,
+        mut q1: Point,
+        p: Point,
+        rng: &mut u32,
+    ) -> Option<Location> {
+        let (corners, twins, points) = self.mesh.raw_arrays();
+        let mut f = f.raw();
+        let mut coin = *rng;
+        let mut steps_left = self.step_limit;
+        let location = loop {
+            if steps_left == 0 {
+                *rng = coin;
+                return None;
             }
-            let (u, slot) = (f.triangle(), f.slot() as usize);
-            let (e1, e2) = (u.edge(NEXT_SLOT[slot]), u.edge(PREV_SLOT[slot]));
-            let x = self.corner(e2);
-            if x == GHOST {
-                return Location::Outside(u);
+            steps_left -= 1;
+            // By table, not by branches on the slot (which would be mispredicted).
+            let (slot, base) = (f % 3, f / 3 * 3);
+            let (e1, e2) = (
+                base + NEXT_SLOT[slot as usize],
+                base + PREV_SLOT[slot as usize],
+            );
+            // SAFETY: `f` is a half-edge of the mesh (a twin), so are `e1` and `e2` (of its
+            // triangle); corners other than GHOST are vertex ids.
+            let x = unsafe { *corners.add(e2 as usize) };
+            if x == GHOST.raw() {
+                break Location::Outside(TriangleId::new(f / 3));
             }
-            let q2 = self.point(x);
+            // SAFETY: as above.
+            let q2 = unsafe { *points.add(x as usize) };
             // A linear congruential step (Numerical Recipes' constants); its top bit is the coin
             // (the low bits of such a generator have short periods, the top one does not).
-            self.rng = self.rng.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            coin = coin.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
             // Edge e1 runs q1 → q2, e2 runs q2 → q0.
-            let (o1, o2) = if self.rng >> 31 == 0 {
+            let (o1, o2) = if coin >> 31 == 0 {
                 let o1 = P::orient2d(q1, q2, p);
                 if o1 < 0.0 {
-                    (f, q0) = (self.twin(e1), q2);
+                    // SAFETY: as above.
+                    (f, q0) = (unsafe { *twins.add(e1 as usize) }, q2);
                     continue;
                 }
                 let o2 = P::orient2d(q2, q0, p);
                 if o2 < 0.0 {
-                    (f, q1) = (self.twin(e2), q2);
+                    // SAFETY: as above.
+                    (f, q1) = (unsafe { *twins.add(e2 as usize) }, q2);
                     continue;
                 }
                 (o1, o2)
             } else {
                 let o2 = P::orient2d(q2, q0, p);
                 if o2 < 0.0 {
-                    (f, q1) = (self.twin(e2), q2);
+                    // SAFETY: as above.
+                    (f, q1) = (unsafe { *twins.add(e2 as usize) }, q2);
                     continue;
                 }
                 let o1 = P::orient2d(q1, q2, p);
                 if o1 < 0.0 {
-                    (f, q0) = (self.twin(e1), q2);
+                    // SAFETY: as above.
+                    (f, q0) = (unsafe { *twins.add(e1 as usize) }, q2);
                     continue;
                 }
                 (o1, o2)
             };
+            let u = TriangleId::new(f / 3);
+            let (e1, e2) = (EdgeId::new(e1), EdgeId::new(e2));
             let zeros = match (o1 == 0.0, o2 == 0.0) {
-                (false, false) => return Location::InTriangle(u),
+                (false, false) => break Location::InTriangle(u),
                 (true, false) => [e1, EdgeId::NONE],
                 (false, true) => [e2, EdgeId::NONE],
                 (true, true) => [e1, e2],
             };
             let count = if zeros[1] == EdgeId::NONE { 1 } else { 2 };
-            return location_in_triangle(
+            break location_in_triangle(
                 u,
                 &zeros[..count],
                 p,
-                |e| ends(self, e),
+                |e| (self.corner(e), self.corner(e.next())),
                 |v| self.point(v),
             );
-        }
+        };
+        *rng = coin;
+        Some(location)
     }
 
     /// The general inserter's scan, for the walk that inexact arithmetic can send in circles.

@@ -18,16 +18,19 @@ const HILBERT_BITS: u32 = 16;
 /// Position of cell `(x, y)` along the Hilbert curve filling a `2^HILBERT_BITS` square grid.
 ///
 /// Four bits of each coordinate at a time through [`HILBERT_TABLE`]: no branches, whose
-/// outcomes (the coordinates' bits) would be unpredictable.
+/// outcomes (the coordinates' bits) would be unpredictable. The orientation is carried as the
+/// table entry's high bits, which are the offset of its quarter of the table: one mask per
+/// level, and no bounds check (the index is below 1024 by its bits).
 fn hilbert_index(x: u32, y: u32) -> u32 {
     let mut d: u32 = 0;
-    let mut state = 0usize;
+    let mut quarter = 0u32;
     let mut shift = HILBERT_BITS;
     while shift > 0 {
         shift -= 4;
-        let entry = HILBERT_TABLE[state][(((x >> shift) & 15) << 4 | ((y >> shift) & 15)) as usize];
-        d = (d << 8) | u32::from(entry & 0xff);
-        state = usize::from(entry >> 8);
+        let cell = ((x >> shift) & 15) << 4 | ((y >> shift) & 15);
+        let entry = u32::from(HILBERT_TABLE[(quarter | cell) as usize]);
+        d = (d << 8) | (entry & 0xff);
+        quarter = entry & 0x300;
     }
     d
 }
@@ -56,10 +59,10 @@ const fn hilbert_step(state: usize, bx: u32, by: u32) -> (u32, usize) {
     ((3 * rx) ^ ry, next)
 }
 
-/// Four levels of [`hilbert_step`] at once: per orientation and 4 bits of x, 4 bits of y (x
-/// high), the 8 bits of position (low byte) and the orientation after them (high byte).
-const HILBERT_TABLE: [[u16; 256]; 4] = {
-    let mut table = [[0u16; 256]; 4];
+/// Four levels of [`hilbert_step`] at once: at 256 · orientation + 16 · (4 bits of x) + (4
+/// bits of y), the 8 bits of position (low byte) and 256 · the orientation after them.
+const HILBERT_TABLE: [u16; 1024] = {
+    let mut table = [0u16; 1024];
     let mut start = 0;
     while start < 4 {
         let mut xy = 0;
@@ -75,7 +78,7 @@ const HILBERT_TABLE: [[u16; 256]; 4] = {
                 d = (d << 2) | digit;
                 state = next;
             }
-            table[start][xy] = (d as u16) | ((state as u16) << 8);
+            table[256 * start + xy] = (d as u16) | ((state as u16) << 8);
             xy += 1;
         }
         start += 1;
@@ -233,10 +236,18 @@ const ROUNDS: usize = 32;
 
 /// The round of the next point: round r from the last takes each point with probability
 /// (1 − q)·q^r, q = 2^−`growth_bits`: the number of trailing zero bits of a uniform random word,
-/// in steps of `growth_bits`.
-fn next_round(state: &mut u64, growth_bits: u32) -> u32 {
-    let from_last = (splitmix64(state).trailing_zeros() / growth_bits).min(ROUNDS as u32 - 1);
-    ROUNDS as u32 - 1 - from_last
+/// in steps of `growth_bits` (`rounds`, from [`rounds_by_trailing_zeros`]).
+fn next_round(state: &mut u64, rounds: &[u8; 65]) -> u32 {
+    u32::from(rounds[splitmix64(state).trailing_zeros() as usize])
+}
+
+/// [`next_round`]'s round for each count of trailing zero bits (0 to 64): one lookup per point
+/// instead of a division.
+fn rounds_by_trailing_zeros(growth_bits: u32) -> [u8; 65] {
+    std::array::from_fn(|zeros| {
+        let from_last = (zeros as u32 / growth_bits).min(ROUNDS as u32 - 1);
+        (ROUNDS as u32 - 1 - from_last) as u8
+    })
 }
 
 /// All point indices in random rounds, each in Hilbert order; the last round holds a fraction
@@ -315,8 +326,9 @@ fn sorted_words<const POINTS: bool>(
     let (words, sorted) = room[..2 * n].split_at_mut(n);
     let key = hilbert_key_of(points);
     let mut state = seed;
+    let rounds = rounds_by_trailing_zeros(growth_bits);
     for (i, (word, &p)) in words.iter_mut().zip(points).enumerate() {
-        let round = u64::from(next_round(&mut state, growth_bits));
+        let round = u64::from(next_round(&mut state, &rounds));
         *word = (round << (32 + INDEX_BITS)) | (u64::from(key(p)) << INDEX_BITS) | i as u64;
     }
     // The bucket of a word: its round and the top bits of its key.
@@ -452,8 +464,9 @@ fn sort_bucket(
 /// the Hilbert order by radix sort, then a stable counting sort by round.
 fn rounds_in_hilbert_order_by_passes(points: &[Point], seed: u64, growth_bits: u32) -> Vec<u32> {
     let mut state = seed;
+    let rounds = rounds_by_trailing_zeros(growth_bits);
     let round_of: Vec<u8> = (0..points.len())
-        .map(|_| next_round(&mut state, growth_bits) as u8)
+        .map(|_| next_round(&mut state, &rounds) as u8)
         .collect();
     let mut starts = [0usize; ROUNDS + 1];
     for &r in &round_of {
