@@ -21,13 +21,11 @@
 #[path = "../tests/common/mod.rs"]
 mod common;
 
-use std::time::Duration;
-
 use common::call::Triangulation;
 use common::pslg::star_polygon;
 use common::timing::{
-    benchmarking, large_blocks_from_mmap, measured, measured_call, median, number_from_env,
-    sizes_from_env, sorted_triangles, Library, Times,
+    benchmarking, large_blocks_from_mmap, measured, measured_call, number_from_env, print_race,
+    sizes_from_env, sorted_triangles, Library, RaceRow, Times,
 };
 use common::MeshInput;
 
@@ -189,56 +187,21 @@ fn main() {
 
 /// Prints the table of one size; returns each contestant's median times.
 fn print_table(n: usize, reps: usize, contestants: &[Contestant], runs: &[Vec<Run>]) -> Vec<Times> {
-    let medians: Vec<(Times, u64)> = runs
+    let rows: Vec<RaceRow> = contestants
         .iter()
-        .map(|r| {
-            let times: Vec<Times> = r.iter().map(|run| run.times).collect();
-            let peaks: Vec<Duration> = r
-                .iter()
-                .map(|run| Duration::from_nanos(run.peak_bytes))
-                .collect();
-            (Times::median(&times), median(peaks).as_nanos() as u64)
+        .zip(runs)
+        .map(|(c, r)| RaceRow {
+            name: c.name(),
+            times: r.iter().map(|run| run.times).collect(),
+            peak_bytes: r.iter().map(|run| run.peak_bytes).collect(),
+            triangles: r.last().and_then(|run| run.triangles),
         })
         .collect();
-    let triangle = contestants
-        .iter()
-        .position(|&c| c == Contestant::Triangle)
-        .map(|k| medians[k].0);
-    println!(
+    let title = format!(
         "CDT of a random star-shaped polygon of {n} vertices (switches \"{SWITCHES}\"), medians of {reps} interleaved run(s)"
     );
-    println!(
-        "| {:<22} | {:>7} | {:>7} | {:>22} | {:>13} | {:>9} |",
-        "", "wall s", "cpu s", "Triangle's / ours", "peak B/vertex", "triangles"
-    );
-    println!(
-        "|{:-<24}|{:->9}|{:->9}|{:->24}|{:->15}|{:->11}|",
-        "", "", "", "", "", ""
-    );
-    for (k, &c) in contestants.iter().enumerate() {
-        let (times, peak) = medians[k];
-        let ratio = triangle.map_or("—".to_string(), |t| {
-            format!(
-                "{:.2}× wall {:.2}× cpu",
-                t.wall.as_secs_f64() / times.wall.as_secs_f64(),
-                t.cpu.as_secs_f64() / times.cpu.as_secs_f64()
-            )
-        });
-        let triangles = match runs[k].last().and_then(|r| r.triangles) {
-            Some(count) => count.to_string(),
-            None => "failed".to_string(),
-        };
-        println!(
-            "| {:<22} | {:>7.3} | {:>7.3} | {:>22} | {:>13.0} | {:>9} |",
-            c.name(),
-            times.wall.as_secs_f64(),
-            times.cpu.as_secs_f64(),
-            ratio,
-            peak as f64 / n as f64,
-            triangles
-        );
-    }
-    medians.into_iter().map(|(times, _)| times).collect()
+    let triangle = contestants.iter().position(|&c| c == Contestant::Triangle);
+    print_race(&title, n, &rows, triangle)
 }
 
 /// Ours gives the polygon's n − 2 triangles, Triangle's; cdt, when it succeeds, as many.

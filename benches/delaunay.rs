@@ -16,14 +16,13 @@
 mod common;
 
 use std::os::raw::{c_char, c_void};
-use std::time::Duration;
 
 use common::call::{ours_status, run_call, MeshInput};
 use common::points::{self, Point};
 use common::reference::Reference;
 use common::timing::{
-    benchmarking, large_blocks_from_mmap, measured, median, number_from_env, sizes_from_env,
-    sorted_triangles, Times,
+    benchmarking, large_blocks_from_mmap, measured, number_from_env, print_race, sizes_from_env,
+    sorted_triangles, RaceRow, Times,
 };
 use triangle_rs::io::triangulateio::TriangulateIO;
 
@@ -198,52 +197,23 @@ fn main() {
     }
 }
 
+/// Prints the table of one size.
 fn print_table(n: usize, reps: usize, contestants: &[Contestant], runs: &[Vec<Run>]) {
-    let medians: Vec<(Times, u64)> = runs
+    let rows: Vec<RaceRow> = contestants
         .iter()
-        .map(|r| {
-            let times: Vec<Times> = r.iter().map(|run| run.times).collect();
-            let peaks: Vec<Duration> = r
-                .iter()
-                .map(|run| Duration::from_nanos(run.peak_bytes))
-                .collect();
-            (Times::median(&times), median(peaks).as_nanos() as u64)
+        .zip(runs)
+        .map(|(c, r)| RaceRow {
+            name: c.name(),
+            times: r.iter().map(|run| run.times).collect(),
+            peak_bytes: r.iter().map(|run| run.peak_bytes).collect(),
+            triangles: r.last().map(|run| run.triangles),
         })
         .collect();
-    let triangle = contestants
-        .iter()
-        .position(|&c| c == Contestant::Triangle)
-        .map(|k| medians[k].0);
-    println!(
+    let title = format!(
         "Delaunay triangulation of {n} uniform random points, medians of {reps} interleaved run(s)"
     );
-    println!(
-        "| {:<22} | {:>7} | {:>7} | {:>20} | {:>13} | {:>9} |",
-        "", "wall s", "cpu s", "Triangle's / ours", "peak B/vertex", "triangles"
-    );
-    println!(
-        "|{:-<24}|{:->9}|{:->9}|{:->22}|{:->15}|{:->11}|",
-        "", "", "", "", "", ""
-    );
-    for (k, &c) in contestants.iter().enumerate() {
-        let (times, peak) = medians[k];
-        let ratio = triangle.map_or("—".to_string(), |t| {
-            format!(
-                "{:.2}× wall {:.2}× cpu",
-                t.wall.as_secs_f64() / times.wall.as_secs_f64(),
-                t.cpu.as_secs_f64() / times.cpu.as_secs_f64()
-            )
-        });
-        println!(
-            "| {:<22} | {:>7.3} | {:>7.3} | {:>20} | {:>13.0} | {:>9} |",
-            c.name(),
-            times.wall.as_secs_f64(),
-            times.cpu.as_secs_f64(),
-            ratio,
-            peak as f64 / n as f64,
-            runs[k].last().map_or(0, |r| r.triangles)
-        );
-    }
+    let triangle = contestants.iter().position(|&c| c == Contestant::Triangle);
+    print_race(&title, n, &rows, triangle);
 }
 
 /// Our triangle sets (both ways) are Triangle's; every contestant found the same number.

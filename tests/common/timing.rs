@@ -302,3 +302,60 @@ pub fn compare_interleaved(
     );
     (ours, ours_mesh)
 }
+
+/// One contestant's row of a race table: its name, and per run its times and peak bytes; its
+/// triangle count (`None`: it failed).
+pub struct RaceRow {
+    pub name: &'static str,
+    pub times: Vec<Times>,
+    pub peak_bytes: Vec<u64>,
+    pub triangles: Option<usize>,
+}
+
+/// Prints `title` and a race table of `rows` on `n` vertices: median wall and CPU seconds, the
+/// ratio of row `reference`'s (Triangle's) times over each one's, median peak bytes per vertex,
+/// triangles. Returns each row's median times.
+pub fn print_race(title: &str, n: usize, rows: &[RaceRow], reference: Option<usize>) -> Vec<Times> {
+    let medians: Vec<(Times, u64)> = rows
+        .iter()
+        .map(|row| {
+            let peaks = row.peak_bytes.iter().map(|&b| Duration::from_nanos(b));
+            (
+                Times::median(&row.times),
+                median(peaks.collect()).as_nanos() as u64,
+            )
+        })
+        .collect();
+    let baseline = reference.map(|k| medians[k].0);
+    println!("{title}");
+    println!(
+        "| {:<22} | {:>7} | {:>7} | {:>22} | {:>13} | {:>9} |",
+        "", "wall s", "cpu s", "Triangle's / ours", "peak B/vertex", "triangles"
+    );
+    println!(
+        "|{:-<24}|{:->9}|{:->9}|{:->24}|{:->15}|{:->11}|",
+        "", "", "", "", "", ""
+    );
+    for (row, &(times, peak)) in rows.iter().zip(&medians) {
+        let ratio = baseline.map_or("—".to_string(), |t| {
+            format!(
+                "{:.2}× wall {:.2}× cpu",
+                t.wall.as_secs_f64() / times.wall.as_secs_f64(),
+                t.cpu.as_secs_f64() / times.cpu.as_secs_f64()
+            )
+        });
+        let triangles = row
+            .triangles
+            .map_or("failed".to_string(), |count| count.to_string());
+        println!(
+            "| {:<22} | {:>7.3} | {:>7.3} | {:>22} | {:>13.0} | {:>9} |",
+            row.name,
+            times.wall.as_secs_f64(),
+            times.cpu.as_secs_f64(),
+            ratio,
+            peak as f64 / n as f64,
+            triangles
+        );
+    }
+    medians.into_iter().map(|(times, _)| times).collect()
+}
