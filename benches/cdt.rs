@@ -78,10 +78,7 @@ fn peer_run(contestant: Contestant, points: &[[f64; 2]], segments: &[[i32; 2]]) 
     let (times, peak_bytes, triangles) = match contestant {
         Contestant::Spade => {
             use spade::Triangulation as _;
-            let vertices: Vec<spade::Point2<f64>> = points
-                .iter()
-                .map(|p| spade::Point2::new(p[0], p[1]))
-                .collect();
+            let vertices = common::points::spade_points(points);
             let edges: Vec<[usize; 2]> = segments.iter().map(|s| s.map(|v| v as usize)).collect();
             measured(|| {
                 std::panic::catch_unwind(move || {
@@ -190,11 +187,11 @@ fn print_table(n: usize, reps: usize, contestants: &[Contestant], runs: &[Vec<Ru
     let rows: Vec<RaceRow> = contestants
         .iter()
         .zip(runs)
-        .map(|(c, r)| RaceRow {
-            name: c.name(),
-            times: r.iter().map(|run| run.times).collect(),
-            peak_bytes: r.iter().map(|run| run.peak_bytes).collect(),
-            triangles: r.last().and_then(|run| run.triangles),
+        .map(|(c, r)| {
+            let runs = r
+                .iter()
+                .map(|run| (run.times, run.peak_bytes, run.triangles));
+            RaceRow::of(c.name(), runs)
         })
         .collect();
     let title = format!(

@@ -122,10 +122,7 @@ fn peer_run(contestant: Contestant, points: &[Point]) -> Run {
     let (times, peak_bytes, triangles) = match contestant {
         Contestant::Spade => {
             use spade::Triangulation as _;
-            let vertices: Vec<spade::Point2<f64>> = points
-                .iter()
-                .map(|p| spade::Point2::new(p[0], p[1]))
-                .collect();
+            let vertices = common::points::spade_points(points);
             measured(|| {
                 spade::DelaunayTriangulation::<spade::Point2<f64>>::bulk_load(vertices)
                     .expect("spade")
@@ -202,11 +199,11 @@ fn print_table(n: usize, reps: usize, contestants: &[Contestant], runs: &[Vec<Ru
     let rows: Vec<RaceRow> = contestants
         .iter()
         .zip(runs)
-        .map(|(c, r)| RaceRow {
-            name: c.name(),
-            times: r.iter().map(|run| run.times).collect(),
-            peak_bytes: r.iter().map(|run| run.peak_bytes).collect(),
-            triangles: r.last().map(|run| run.triangles),
+        .map(|(c, r)| {
+            let runs = r
+                .iter()
+                .map(|run| (run.times, run.peak_bytes, Some(run.triangles)));
+            RaceRow::of(c.name(), runs)
         })
         .collect();
     let title = format!(

@@ -102,3 +102,11 @@ pub fn all_generators() -> Vec<(&'static str, Generator)> {
         ("offset", offset),
     ]
 }
+
+/// The points as spade's (for the benchmarks that race it).
+pub fn spade_points(points: &[Point]) -> Vec<spade::Point2<f64>> {
+    points
+        .iter()
+        .map(|p| spade::Point2::new(p[0], p[1]))
+        .collect()
+}

@@ -312,6 +312,24 @@ pub struct RaceRow {
     pub triangles: Option<usize>,
 }
 
+impl RaceRow {
+    /// The row of `(times, peak bytes, triangle count or None)` per run; the last run's count.
+    pub fn of(name: &'static str, runs: impl Iterator<Item = (Times, u64, Option<usize>)>) -> Self {
+        let mut row = RaceRow {
+            name,
+            times: Vec::new(),
+            peak_bytes: Vec::new(),
+            triangles: None,
+        };
+        for (times, peak_bytes, triangles) in runs {
+            row.times.push(times);
+            row.peak_bytes.push(peak_bytes);
+            row.triangles = triangles;
+        }
+        row
+    }
+}
+
 /// Prints `title` and a race table of `rows` on `n` vertices: median wall and CPU seconds, the
 /// ratio of row `reference`'s (Triangle's) times over each one's, median peak bytes per vertex,
 /// triangles. Returns each row's median times.
