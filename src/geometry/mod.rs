@@ -215,6 +215,16 @@ impl Predicates for Inexact {
     }
 }
 
+/// The coordinates `(xi, eta)` of `p` in the affine frame of triangle `(a, b, c)`:
+/// `p = a + xi·(b − a) + eta·(c − a)`; they interpolate vertex attributes linearly at `p`.
+pub fn frame_coordinates([a, b, c]: [Point; 3], p: Point) -> (f64, f64) {
+    let det = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    let (dx, dy) = (p[0] - a[0], p[1] - a[1]);
+    let xi = (dx * (c[1] - a[1]) - dy * (c[0] - a[0])) / det;
+    let eta = ((b[0] - a[0]) * dy - (b[1] - a[1]) * dx) / det;
+    (xi, eta)
+}
+
 /// The circumcentre of triangle `(org, dest, apex)`, with its coordinates `(xi, eta)` in the
 /// affine frame of the triangle: `centre = org + xi·(dest − org) + eta·(apex − org)`. The frame
 /// coordinates interpolate (or extrapolate) vertex attributes linearly at the centre.

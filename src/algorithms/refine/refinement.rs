@@ -16,7 +16,7 @@ use super::{inside, Quality, VertexKind};
 use crate::algorithms::constrain::Constrainer;
 use crate::algorithms::delaunay::Location;
 use crate::algorithms::domain::Domain;
-use crate::geometry::{Point, Predicates};
+use crate::geometry::{frame_coordinates, Point, Predicates};
 use crate::mesh::{EdgeId, Mesh, TriangleId, VertexId, GHOST};
 
 /// What a refinement works toward, and at what resolution: fixed for all its runs.
@@ -497,19 +497,18 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
         if self.should_stop() {
             return Seeded::Stop;
         }
-        let tries = usize::from(hint.is_some()) + near.len() + 1;
-        for k in 0..tries {
-            let k = if hint.is_some() { k } else { k + 1 };
-            let from = if k == 0 {
-                hint.unwrap_or(start)
-            } else {
-                match near.get(k - 1) {
-                    Some(&v) => match self.mesh().vertex_edge(v) {
-                        Some(e) => e.triangle(),
-                        None => continue,
-                    },
-                    None => start,
-                }
+        // The starts in order: `hint`, a triangle at each vertex of `near`, `start`.
+        for k in 0..near.len() + 2 {
+            let from = match k {
+                0 => match hint {
+                    Some(t) => t,
+                    None => continue,
+                },
+                k if k <= near.len() => match self.mesh().vertex_edge(near[k - 1]) {
+                    Some(e) => e.triangle(),
+                    None => continue,
+                },
+                _ => start,
             };
             let location = self.cdt.locate(p, from);
             let mesh = self.mesh();
@@ -531,12 +530,8 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
                 return Seeded::Skipped;
             }
             let corners = mesh.triangle(t);
-            let [a, b, c] = corners.map(|v| mesh.point(v));
-            // Frame coordinates of p in the triangle, for its attributes.
-            let det = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-            let (dx, dy) = (p[0] - a[0], p[1] - a[1]);
-            let xi = (dx * (c[1] - a[1]) - dy * (c[0] - a[0])) / det;
-            let eta = ((b[0] - a[0]) * dy - (b[1] - a[1]) * dx) / det;
+            // For its attributes.
+            let (xi, eta) = frame_coordinates(corners.map(|v| mesh.point(v)), p);
             let vertex = self.new_vertex(p, VertexKind::Free);
             self.attributes.push_in_triangle(corners, xi, eta);
             let _ = self.cdt.insert_at(vertex, location);

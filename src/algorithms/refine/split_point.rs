@@ -2,7 +2,7 @@
 //! Triangle's small-angle exemption, and the split point (circumcentre or Üngör's off-centre).
 
 use super::VertexKind;
-use crate::geometry::{circumcenter, Point};
+use crate::geometry::{circumcenter, frame_coordinates, Point};
 use crate::mesh::{Mesh, VertexId};
 
 /// Two distances from a corner are equal (for the small-angle exemption of vertices not on one
@@ -172,11 +172,7 @@ impl AngleBound {
             mid[1] + self.off_center * normal[1],
         ];
         if sq(off, mid) < sq(centre, mid) {
-            // Frame coordinates of the off-centre in triangle (a, b, c).
-            let det = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-            let (dx, dy) = (off[0] - a[0], off[1] - a[1]);
-            let xi = (dx * (c[1] - a[1]) - dy * (c[0] - a[0])) / det;
-            let eta = ((b[0] - a[0]) * dy - (b[1] - a[1]) * dx) / det;
+            let (xi, eta) = frame_coordinates([a, b, c], off);
             (off, xi, eta)
         } else {
             (centre, xi, eta)
