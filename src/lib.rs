@@ -17,6 +17,7 @@ pub mod error;
 pub mod ffi;
 pub mod geometry;
 pub mod io;
+mod memory;
 pub mod mesh;
 pub mod options;
 pub mod pipeline;

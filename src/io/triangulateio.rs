@@ -250,6 +250,7 @@ unsafe fn transfer_all(transfers: &[Transfer<'_>]) -> Result<(), Error> {
                 }
                 return Err(Error::OutOfMemory);
             }
+            crate::memory::prefer_huge_pages(p as *const u8, t.bytes.len());
             // SAFETY: the field is live; we own `p` until the caller takes it.
             unsafe { *t.field = p };
             fresh.push((t.field, p));

@@ -78,8 +78,8 @@ impl Mesh {
     pub fn with_capacity(points: Vec<Point>, triangles: usize) -> Mesh {
         Mesh {
             points,
-            corners: Vec::with_capacity(3 * triangles),
-            twins: Vec::with_capacity(3 * triangles),
+            corners: crate::memory::with_capacity_on_huge_pages(3 * triangles),
+            twins: crate::memory::with_capacity_on_huge_pages(3 * triangles),
             segment: Vec::new(),
             vertex_edge: Vec::new(),
             tag: Vec::new(),

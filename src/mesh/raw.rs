@@ -166,7 +166,7 @@ impl Mesh {
         twins.reserve(3 * triangles);
         Mesh {
             points,
-            corners: Vec::with_capacity(3 * triangles),
+            corners: crate::memory::with_capacity_on_huge_pages(3 * triangles),
             twins,
             segment: Vec::new(),
             vertex_edge: Vec::new(),

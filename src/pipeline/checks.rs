@@ -39,7 +39,7 @@ pub(super) fn checked_points(input: &Input<'_>) -> Result<(Vec<Point>, Magnitude
     // fresh pages it writes, which two cores fault in twice as fast); the culprit is looked for
     // only if there is one.
     let flat = &input.points[..2 * n];
-    let mut points: Vec<Point> = Vec::with_capacity(n);
+    let mut points: Vec<Point> = crate::memory::with_capacity_on_huge_pages(n);
     let spare = &mut points.spare_capacity_mut()[..n];
     let two_cores = crate::threads::two_cores();
     let magnitudes = if two_cores && n >= PARALLEL_COPY {

@@ -13,8 +13,7 @@
 //! chains have as many edges as the zip makes triangles, and two new ghosts close the hull at the
 //! tangents.
 
-use super::order::OrderKind;
-use super::{order_in_room, triangulate_ordered, InInsertionOrder, Triangulation};
+use super::{order_where_in_room, triangulate_ordered, InInsertionOrder, Triangulation};
 use crate::geometry::{Point, Predicates};
 use crate::mesh::{EdgeId, Ghosts, Lawson, Mesh, Quad, TriangleId, VertexId, GHOST};
 
@@ -27,20 +26,20 @@ struct Half {
     duplicate_of: Vec<(u32, u32)>,
 }
 
-/// Triangulates the points on one side of the split (`local_points`, the input points `ids`)
-/// in a mesh with room for `capacity` triangle slots.
+/// Triangulates the points on one side of the split point `split` (lexicographically; its
+/// copies on the left) in a mesh with room for `capacity` triangle slots, numbered as in
+/// `points`; `None` when the side has fewer than three points or all of them collinear.
 fn triangulate_half<P: Predicates>(
-    local_points: Vec<Point>,
-    ids: Vec<u32>,
+    points: &[Point],
+    split: Point,
+    left: bool,
     capacity: usize,
 ) -> Option<Half> {
-    let mut ordered = order_in_room(&local_points, OrderKind::Multiscale, capacity);
-    drop(local_points);
-    // Numbered by input id (increasing with the local index, so first copies stay first).
-    for v in ordered.order.iter_mut() {
-        *v = ids[*v as usize];
+    let on_side = |p: Point| (p[0] < split[0] || (p[0] == split[0] && p[1] <= split[1])) == left;
+    let ordered = order_where_in_room(points, on_side, capacity);
+    if ordered.sorted.len() < 3 {
+        return None;
     }
-    drop(ids);
     let InInsertionOrder {
         triangulation,
         names,
@@ -57,21 +56,6 @@ fn triangulate_half<P: Predicates>(
         mesh,
         duplicate_of: duplicates,
     })
-}
-
-/// The points on one side of the split point `split` (lexicographically; its copies on the
-/// left), with their input ids: one streaming pass over the points.
-fn side_of_split(points: &[Point], split: Point, left: bool) -> (Vec<Point>, Vec<u32>) {
-    let expected = points.len() / 2 + points.len() / 16 + 16;
-    let (mut side, mut ids) = (Vec::with_capacity(expected), Vec::with_capacity(expected));
-    for (i, &p) in points.iter().enumerate() {
-        let at_or_before = p[0] < split[0] || (p[0] == split[0] && p[1] <= split[1]);
-        if at_or_before == left {
-            side.push(p);
-            ids.push(i as u32);
-        }
-    }
-    (side, ids)
 }
 
 /// A point near the lexicographic median: the median of an evenly spaced sample (the halves
@@ -97,19 +81,11 @@ pub fn triangulate_two_halves<P: Predicates>(
     // Every left point precedes every right point strictly (copies of the split point go left).
     let split = split_point(&points);
     // The left mesh gets room for both halves' triangles (2n - 4 slots, and the two ghosts of
-    // the merge): the right half's are appended without reallocating. Each thread picks its
-    // side out of the points itself.
+    // the merge): the right half's are appended without reallocating. Each thread orders its
+    // side straight from all the points.
     let (l, r) = std::thread::scope(|scope| {
-        let right_job = scope.spawn(|| {
-            let (side, ids) = side_of_split(&points, split, false);
-            (ids.len() >= 3)
-                .then(|| triangulate_half::<P>(side, ids, 0))
-                .flatten()
-        });
-        let (side, ids) = side_of_split(&points, split, true);
-        let l = (ids.len() >= 3)
-            .then(|| triangulate_half::<P>(side, ids, 2 * n + 4))
-            .flatten();
+        let right_job = scope.spawn(|| triangulate_half::<P>(&points, split, false, 0));
+        let l = triangulate_half::<P>(&points, split, true, 2 * n + 4);
         // A panic in the right half's thread (a bug) is not hidden behind a sequential retry:
         // it goes on to `pipeline::triangulate`, which reports it as `Error::Internal`.
         let r = right_job

@@ -440,8 +440,31 @@ pub struct Ordered {
 pub fn order_in_room(points: &[Point], kind: order::OrderKind, capacity: usize) -> Ordered {
     let n = points.len();
     let capacity = capacity.max(2 * n + 2);
-    let mut twins: Vec<u32> = Vec::with_capacity(3 * capacity);
+    let mut twins: Vec<u32> = crate::memory::with_capacity_on_huge_pages(3 * capacity);
     let (order, sorted) = kind.order_and_points(points, Some(words_in_room_of(&mut twins, 2 * n)));
+    Ordered {
+        order,
+        sorted,
+        twins,
+        capacity,
+    }
+}
+
+/// [`order_in_room`] in the default order of the points of `points` that `keep` accepts (one
+/// side of a split), numbered as in `points` (see [`order::multiscale_order_and_points_where`]).
+pub fn order_where_in_room(
+    points: &[Point],
+    keep: impl Fn(Point) -> bool,
+    capacity: usize,
+) -> Ordered {
+    let n = points.len();
+    let capacity = capacity.max(2 * n + 2);
+    let mut twins: Vec<u32> = crate::memory::with_capacity_on_huge_pages(3 * capacity);
+    let (order, sorted) = order::multiscale_order_and_points_where(
+        points,
+        keep,
+        Some(words_in_room_of(&mut twins, 2 * n)),
+    );
     Ordered {
         order,
         sorted,

@@ -196,7 +196,19 @@ pub fn multiscale_order_and_points(
     points: &[Point],
     room: Option<&mut [u64]>,
 ) -> (Vec<u32>, Vec<Point>) {
-    rounds_in_hilbert_order_and_points(points, MULTISCALE_SEED, 3, room)
+    rounds_in_hilbert_order_and_points(points, |_| true, MULTISCALE_SEED, 3, room)
+}
+
+/// [`multiscale_order_and_points`] of the points that `keep` accepts (numbered as in `points`;
+/// each with the round and Hilbert key it has among all of them): one side of a split taken
+/// straight from all the points, without copying it out first. `room` as there, for all the
+/// points.
+pub fn multiscale_order_and_points_where(
+    points: &[Point],
+    keep: impl Fn(Point) -> bool,
+    room: Option<&mut [u64]>,
+) -> (Vec<u32>, Vec<Point>) {
+    rounds_in_hilbert_order_and_points(points, keep, MULTISCALE_SEED, 3, room)
 }
 
 /// [`brio_order`] and the points in that order (`room` as for [`multiscale_order_and_points`]).
@@ -205,7 +217,7 @@ pub fn brio_order_and_points(
     seed: u64,
     room: Option<&mut [u64]>,
 ) -> (Vec<u32>, Vec<Point>) {
-    rounds_in_hilbert_order_and_points(points, seed, 1, room)
+    rounds_in_hilbert_order_and_points(points, |_| true, seed, 1, room)
 }
 
 /// Which insertion order.
@@ -268,7 +280,7 @@ fn rounds_in_hilbert_order(points: &[Point], seed: u64, growth_bits: u32) -> Vec
     }
     let n = points.len();
     let mut room = vec![0u64; 2 * n];
-    sorted_words::<false>(points, seed, growth_bits, &mut room);
+    sorted_words::<false>(points, |_| true, seed, growth_bits, &mut room);
     let index_mask = (1u64 << INDEX_BITS) - 1;
     room[n..].iter().map(|&w| (w & index_mask) as u32).collect()
 }
@@ -282,13 +294,22 @@ fn rounds_in_hilbert_order(points: &[Point], seed: u64, growth_bits: u32) -> Vec
 /// are overwritten), else in an allocation of its own.
 fn rounds_in_hilbert_order_and_points(
     points: &[Point],
+    keep: impl Fn(Point) -> bool,
     seed: u64,
     growth_bits: u32,
     room: Option<&mut [u64]>,
 ) -> (Vec<u32>, Vec<Point>) {
     let n = points.len();
     if n >= 1 << INDEX_BITS {
-        let order = rounds_in_hilbert_order_by_passes(points, seed, growth_bits);
+        // Indices too large for the words: the kept points are gathered and ordered by passes.
+        let kept: Vec<u32> = (0..n as u32)
+            .filter(|&i| keep(points[i as usize]))
+            .collect();
+        let kept_points: Vec<Point> = kept.iter().map(|&i| points[i as usize]).collect();
+        let order: Vec<u32> = rounds_in_hilbert_order_by_passes(&kept_points, seed, growth_bits)
+            .into_iter()
+            .map(|v| kept[v as usize])
+            .collect();
         let sorted = order.iter().map(|&v| points[v as usize]).collect();
         return (order, sorted);
     }
@@ -300,9 +321,9 @@ fn rounds_in_hilbert_order_and_points(
             &mut own[..]
         }
     };
-    let sorted_points = sorted_words::<true>(points, seed, growth_bits, room);
+    let sorted_points = sorted_words::<true>(points, keep, seed, growth_bits, room);
     let index_mask = (1u64 << INDEX_BITS) - 1;
-    let order = room[n..2 * n]
+    let order = room[n..n + sorted_points.len()]
         .iter()
         .map(|&w| (w & index_mask) as u32)
         .collect();
@@ -312,11 +333,14 @@ fn rounds_in_hilbert_order_and_points(
 /// Bits of a point's index in the words of [`sorted_words`].
 const INDEX_BITS: u32 = 27;
 
-/// Sorts the words of [`rounds_in_hilbert_order`] into `room[n..2n]` (`room[..n]` is the
-/// sort's spare room) and returns (with `POINTS`) the points in the same order (else an empty
-/// list). Fewer than 2^[`INDEX_BITS`] points; `room` holds at least two words per point.
+/// Sorts the words of [`rounds_in_hilbert_order`] for the points that `keep` accepts (`m` of
+/// the `n`) into `room[n..n + m]` (`room[..m]` is the sort's spare room) and returns (with
+/// `POINTS`) the kept points in the same order (else an empty list). A kept point's round and
+/// Hilbert key are those it has among all the points.
+/// Fewer than 2^[`INDEX_BITS`] points; `room` holds at least two words per point.
 fn sorted_words<const POINTS: bool>(
     points: &[Point],
+    keep: impl Fn(Point) -> bool,
     seed: u64,
     growth_bits: u32,
     room: &mut [u64],
@@ -327,10 +351,19 @@ fn sorted_words<const POINTS: bool>(
     let key = hilbert_key_of(points);
     let mut state = seed;
     let rounds = rounds_by_trailing_zeros(growth_bits);
-    for (i, (word, &p)) in words.iter_mut().zip(points).enumerate() {
+    let mut m = 0;
+    for (i, &p) in points.iter().enumerate() {
+        // Written unconditionally and kept by advancing `m`: the side of a split is a coin
+        // toss per point, and a branch on it would be mispredicted half the time.
         let round = u64::from(next_round(&mut state, &rounds));
-        *word = (round << (32 + INDEX_BITS)) | (u64::from(key(p)) << INDEX_BITS) | i as u64;
+        words[m] = (round << (32 + INDEX_BITS)) | (u64::from(key(p)) << INDEX_BITS) | i as u64;
+        m += usize::from(keep(p));
+        if m == n {
+            break;
+        }
     }
+    let (words, sorted) = (&mut words[..m], &mut sorted[..m]);
+    let n = m;
     // The bucket of a word: its round and the top bits of its key.
     let bucket = |w: u64| (w >> (32 + INDEX_BITS - TOP_BITS)) as usize;
     let mut starts = vec![0usize; (ROUNDS << TOP_BITS) + 1];
@@ -341,18 +374,26 @@ fn sorted_words<const POINTS: bool>(
         starts[b] += starts[b - 1];
     }
     let mut sorted_points: Vec<Point> = if POINTS {
-        vec![[0.0; 2]; points.len()]
+        crate::memory::with_capacity_on_huge_pages(n)
     } else {
         Vec::new()
     };
     let mut next = starts.clone();
-    for (i, &w) in words.iter().enumerate() {
+    let index_mask = (1u64 << INDEX_BITS) - 1;
+    let room_for_points = &mut sorted_points.spare_capacity_mut()[..if POINTS { n } else { 0 }];
+    for &w in words.iter() {
         let b = bucket(w);
         sorted[next[b]] = w;
         if POINTS {
-            sorted_points[next[b]] = points[i];
+            // The words are in input order: these reads go forward through the points.
+            room_for_points[next[b]].write(points[(w & index_mask) as usize]);
         }
         next[b] += 1;
+    }
+    if POINTS {
+        // SAFETY: the scatter wrote each of the first `n` slots once (the bucket starts
+        // partition 0..n, and each bucket's slots are filled by its words), within capacity `n`.
+        unsafe { sorted_points.set_len(n) };
     }
     drop(next);
     let spare = words;
