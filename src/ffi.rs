@@ -98,7 +98,8 @@ unsafe fn run(
             pipeline::triangulate(&options, &engine_input, &hooks)?
             // `engine_input` ends here, before anything is written: `out` may alias `in`.
         };
-        let (mesh, voronoi) = result;
+        let (mut mesh, voronoi) = result;
+        let warnings = std::mem::take(&mut mesh.warnings);
         let in_copy = *in_ref;
         // SAFETY: `out`/`vorout` are valid (checked non-NULL) and their non-NULL arrays are
         // large enough (Triangle's contract).
@@ -106,12 +107,12 @@ unsafe fn run(
             let vor = if vorout.is_null() {
                 None
             } else {
-                Some((&voronoi, &mut *vorout))
+                Some((voronoi, &mut *vorout))
             };
-            write_output(&in_copy, &mesh, &mut *output, vor)?;
+            write_output(&in_copy, mesh, &mut *output, vor)?;
         }
         if !quiet {
-            for w in &mesh.warnings {
+            for w in &warnings {
                 eprintln!("Warning: {w}");
             }
         }

@@ -24,6 +24,16 @@ pub mod pipeline;
 pub mod scaling;
 mod threads;
 
+/// With the `malloc-outputs` feature (the default) on Unix, every Rust allocation of this library
+/// is the C library's: the standard library's system allocator is malloc-based there (malloc,
+/// realloc, posix_memalign for large alignments, free). The C ABI then hands the arrays the
+/// engine built to the caller as they are — the caller frees them with `free` or `trifree`, as
+/// Triangle's — instead of copying them into new ones: at a million points that copy is some
+/// 44 MB of fresh pages, a tenth of a triangulation's time.
+#[cfg(all(unix, feature = "malloc-outputs"))]
+#[global_allocator]
+static MALLOC: std::alloc::System = std::alloc::System;
+
 pub use data::{Hooks, Input, Output, Phase, Progress, VoronoiDiagram, VoronoiOutput};
 pub use error::Error;
 pub use options::{Options, SwitchSource};

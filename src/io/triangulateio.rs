@@ -212,10 +212,52 @@ fn to_c_int(field: &'static str, value: usize) -> Result<c_int, Error> {
     })
 }
 
-/// One array to hand to the caller: the destination field and the data.
-struct Transfer<'a> {
+/// An output array the engine built, owned until it is handed to the caller or copied.
+enum Array {
+    F64(Vec<f64>),
+    I32(Vec<i32>),
+}
+
+impl Array {
+    fn bytes(&self) -> &[u8] {
+        match self {
+            Array::F64(v) => as_bytes(v),
+            Array::I32(v) => as_bytes(v),
+        }
+    }
+
+    /// Whether its allocation can become the caller's array: it is malloc's ([`HAND_OVER`])
+    /// and it has one (an empty vector may have none).
+    fn can_hand_over(&self) -> bool {
+        HAND_OVER
+            && match self {
+                Array::F64(v) => v.capacity() > 0,
+                Array::I32(v) => v.capacity() > 0,
+            }
+    }
+
+    /// Gives up the allocation (shrunk to the items; with malloc-based Rust allocations, see
+    /// lib.rs) as a pointer for the caller to `free`.
+    fn into_raw(self) -> *mut c_void {
+        fn leak<T>(mut v: Vec<T>) -> *mut c_void {
+            v.shrink_to_fit();
+            std::mem::ManuallyDrop::new(v).as_mut_ptr().cast()
+        }
+        match self {
+            Array::F64(v) => leak(v),
+            Array::I32(v) => leak(v),
+        }
+    }
+}
+
+/// Whether Rust's allocations are malloc's, so that an output array can be handed over as it
+/// is (see lib.rs).
+const HAND_OVER: bool = cfg!(all(unix, feature = "malloc-outputs"));
+
+/// One array for the caller: the destination field and the data.
+struct Transfer {
     field: *mut *mut c_void,
-    bytes: &'a [u8],
+    data: Array,
 }
 
 fn as_bytes<T: Copy>(v: &[T]) -> &[u8] {
@@ -224,22 +266,31 @@ fn as_bytes<T: Copy>(v: &[T]) -> &[u8] {
     unsafe { std::slice::from_raw_parts(v.as_ptr() as *const u8, std::mem::size_of_val(v)) }
 }
 
-/// Copies every array into its field: into the caller's buffer when the field is non-NULL,
-/// else into a new `malloc`ed one. If an allocation fails, everything allocated here is freed
-/// again and the fields are left as they were.
+/// Puts every array into its field: into the caller's buffer when the field is non-NULL, else
+/// the array itself when it can be handed over, else a new `malloc`ed copy. If an allocation
+/// fails, everything allocated here is freed again and the fields are left as they were.
 ///
 /// # Safety
 /// Each non-NULL destination field must point to a buffer large enough for its data, and each
 /// `field` pointer must be valid for reads and writes.
-unsafe fn transfer_all(transfers: &[Transfer<'_>]) -> Result<(), Error> {
-    let mut fresh: Vec<(*mut *mut c_void, *mut c_void)> = Vec::new();
+unsafe fn transfer_all(transfers: Vec<Transfer>) -> Result<(), Error> {
+    let (mut copies, mut handed): (Vec<Transfer>, Vec<Transfer>) = (Vec::new(), Vec::new());
     for t in transfers {
+        // SAFETY: `field` points into a live TriangulateIO (caller's contract).
+        if unsafe { (*t.field).is_null() } && t.data.can_hand_over() {
+            handed.push(t);
+        } else {
+            copies.push(t);
+        }
+    }
+    let mut fresh: Vec<(*mut *mut c_void, *mut c_void)> = Vec::new();
+    for t in &copies {
         // SAFETY: `field` points into a live TriangulateIO (caller's contract).
         if unsafe { (*t.field).is_null() } {
             // malloc(0) may return NULL; ask for at least one byte so that a written array is
             // always a non-NULL pointer the caller can free().
             // SAFETY: plain libc allocation.
-            let p = unsafe { libc::malloc(t.bytes.len().max(1)) };
+            let p = unsafe { libc::malloc(t.data.bytes().len().max(1)) };
             if p.is_null() {
                 for (field, p) in fresh {
                     // SAFETY: `p` was allocated above and not yet handed out; `field` is live.
@@ -250,21 +301,21 @@ unsafe fn transfer_all(transfers: &[Transfer<'_>]) -> Result<(), Error> {
                 }
                 return Err(Error::OutOfMemory);
             }
-            crate::memory::prefer_huge_pages(p as *const u8, t.bytes.len());
+            crate::memory::prefer_huge_pages(p as *const u8, t.data.bytes().len());
             // SAFETY: the field is live; we own `p` until the caller takes it.
             unsafe { *t.field = p };
             fresh.push((t.field, p));
         }
     }
-    let total: usize = transfers.iter().map(|t| t.bytes.len()).sum();
+    let total: usize = copies.iter().map(|t| t.data.bytes().len()).sum();
     let two_cores = crate::threads::two_cores();
     // Each destination: where its bytes go (an address, so that the halves can cross threads).
-    let copies: Vec<(usize, &[u8])> = transfers
+    let destinations: Vec<(usize, &[u8])> = copies
         .iter()
         .map(|t| {
             // SAFETY: each field is live (caller's contract) and now non-NULL.
             let destination = unsafe { *t.field } as usize;
-            (destination, t.bytes)
+            (destination, t.data.bytes())
         })
         .collect();
     if two_cores && total >= PARALLEL_COPY_BYTES {
@@ -272,15 +323,20 @@ unsafe fn transfer_all(transfers: &[Transfer<'_>]) -> Result<(), Error> {
         // faults in one by one) are copied in two halves, the second on another thread.
         std::thread::scope(|scope| {
             let spawned =
-                std::thread::Builder::new().spawn_scoped(scope, || copy_parts(&copies, 1));
-            copy_parts(&copies, 0);
+                std::thread::Builder::new().spawn_scoped(scope, || copy_parts(&destinations, 1));
+            copy_parts(&destinations, 0);
             if spawned.is_err() {
-                copy_parts(&copies, 1); // no second thread to be had: this one copies it
+                copy_parts(&destinations, 1); // no second thread to be had: this one copies it
             }
         });
     } else {
-        copy_parts(&copies, 0);
-        copy_parts(&copies, 1);
+        copy_parts(&destinations, 0);
+        copy_parts(&destinations, 1);
+    }
+    for t in handed {
+        // SAFETY: the field is live and NULL; the array's allocation is malloc's (HAND_OVER),
+        // and from here the caller owns it.
+        unsafe { *t.field = t.data.into_raw() };
     }
     Ok(())
 }
@@ -325,35 +381,36 @@ macro_rules! field_ptr {
 /// pointers are aliased into `out`).
 pub unsafe fn write_output(
     input: &TriangulateIO,
-    output: &Output,
+    mut output: Output,
     out: &mut TriangulateIO,
-    voronoi: Option<(&VoronoiOutput, &mut TriangulateIO)>,
+    voronoi: Option<(VoronoiOutput, &mut TriangulateIO)>,
 ) -> Result<(), Error> {
-    let mut transfers: Vec<Transfer<'_>> = Vec::new();
+    let mut transfers: Vec<Transfer> = Vec::new();
     macro_rules! push {
-        ($tio:expr, $field:ident, $data:expr) => {
+        ($tio:expr, $field:ident, $kind:ident, $data:expr) => {
             if let Some(d) = $data {
                 transfers.push(Transfer {
                     field: field_ptr!($tio, $field),
-                    bytes: as_bytes(d),
+                    data: Array::$kind(d),
                 });
             }
         };
     }
-    push!(out, pointlist, output.points.as_deref());
-    push!(out, pointattributelist, output.point_attributes.as_deref());
-    push!(out, pointmarkerlist, output.point_markers.as_deref());
-    push!(out, trianglelist, output.triangles.as_deref());
+    push!(out, pointlist, F64, output.points.take());
+    push!(out, pointattributelist, F64, output.point_attributes.take());
+    push!(out, pointmarkerlist, I32, output.point_markers.take());
+    push!(out, trianglelist, I32, output.triangles.take());
     push!(
         out,
         triangleattributelist,
-        output.triangle_attributes.as_deref()
+        F64,
+        output.triangle_attributes.take()
     );
-    push!(out, neighborlist, output.neighbors.as_deref());
-    push!(out, segmentlist, output.segments.as_deref());
-    push!(out, segmentmarkerlist, output.segment_markers.as_deref());
-    push!(out, edgelist, output.edges.as_deref());
-    push!(out, edgemarkerlist, output.edge_markers.as_deref());
+    push!(out, neighborlist, I32, output.neighbors.take());
+    push!(out, segmentlist, I32, output.segments.take());
+    push!(out, segmentmarkerlist, I32, output.segment_markers.take());
+    push!(out, edgelist, I32, output.edges.take());
+    push!(out, edgemarkerlist, I32, output.edge_markers.take());
 
     let counts = (
         to_c_int("numberofpoints", output.point_count)?,
@@ -377,17 +434,18 @@ pub unsafe fn write_output(
             to_c_int("numberofpointattributes", vor.point_attribute_count)?,
             to_c_int("numberofedges", vor.edge_count)?,
         );
-        if let Some(d) = &vor.diagram {
-            push!(vorout, pointlist, Some(&d.points[..]));
-            push!(vorout, pointattributelist, Some(&d.point_attributes[..]));
-            push!(vorout, edgelist, Some(&d.edges[..]));
-            push!(vorout, normlist, Some(&d.norms[..]));
+        let written = vor.diagram.is_some();
+        if let Some(d) = vor.diagram {
+            push!(vorout, pointlist, F64, Some(d.points));
+            push!(vorout, pointattributelist, F64, Some(d.point_attributes));
+            push!(vorout, edgelist, I32, Some(d.edges));
+            push!(vorout, normlist, F64, Some(d.norms));
         }
-        vorout_fields = Some((vorout, vor_counts, vor.diagram.is_some()));
+        vorout_fields = Some((vorout, vor_counts, written));
     }
     // SAFETY: the fields point into `out`/`vorout`, live for this call; buffer sizes are the
     // caller's contract.
-    unsafe { transfer_all(&transfers)? };
+    unsafe { transfer_all(transfers)? };
 
     if let Some((vorout, (np, na, ne), written)) = vorout_fields {
         vorout.numberofpoints = np;
