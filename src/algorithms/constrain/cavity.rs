@@ -307,7 +307,7 @@ impl<P: Predicates> Constrainer<P> {
 /// order, the first and last being the segment's ends): top-down from the base (the segment),
 /// each sub-polygon's base joined to the half-edge of its parent triangle (Anglada 1997). A
 /// polygon's base makes a triangle with the chain vertex whose circle through the base holds no
-/// other chain vertex ([`Predicates::smallest_circle`]: the first one when several are
+/// other chain vertex ([`Predicates::smallest_circle_left`]: the first one when several are
 /// cocircular), and the two sub-chains on either side of it recurse.
 struct Planner<'a> {
     vertices: &'a [VertexId],
@@ -349,14 +349,17 @@ impl Planner<'_> {
             let (first, last, join) = tasks[pending];
             let (u, w) = (points[first as usize], points[last as usize]);
             // A triangle's worth of polygon has its apex already: no circle to compare.
-            let apex = if last == first + 2 {
-                first + 1
+            let (apex, left) = if last == first + 2 {
+                (
+                    first + 1,
+                    P::orient2d(u, w, points[first as usize + 1]) > 0.0,
+                )
             } else {
-                first
-                    + 1
-                    + P::smallest_circle(u, w, &points[first as usize + 1..last as usize]) as u32
+                let candidates = &points[first as usize + 1..last as usize];
+                let (best, left) = P::smallest_circle_left(u, w, candidates);
+                (first + 1 + best as u32, left)
             };
-            if P::orient2d(u, w, points[apex as usize]) <= 0.0 {
+            if !left {
                 return false;
             }
             let t = slots[*planned];
