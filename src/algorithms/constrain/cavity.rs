@@ -129,23 +129,39 @@ impl<P: Predicates> Constrainer<P> {
         right.set(k, r1, mesh.point(r1));
         right.outer[k] = mesh.twin(h1.prev()); // r1 → a
         let (mut left_len, mut right_start) = (2, k);
-        for i in 0..k {
-            let f = mesh.twin(crossed[i]); // left → right, in the next triangle of the cavity
-            slots[i + 1] = f.triangle();
+        for (i, (&h, slot)) in crossed.iter().zip(&mut slots[1..]).enumerate() {
+            // SAFETY (the three unchecked reads): `crossed` holds half-edges of the mesh as it
+            // is (cross_edges walked them), and the twin of a half-edge and the other half-edges
+            // of its triangle are half-edges of the mesh.
+            let f = unsafe { mesh.twin_unchecked(h) }; // left → right, in the next triangle
+            *slot = f.triangle();
             let (f_next, f_prev) = Mesh::next_and_prev(f);
-            let z = mesh.origin(f_prev);
+            let z = unsafe { mesh.corner_unchecked(f_prev) };
             let pz = mesh.point(z);
             // The next crossed edge is right → z when z is on the left, z → left otherwise.
             let next = crossed.get(i + 1).copied();
             if next.is_none_or(|h| h == f_next) {
-                left.set(left_len, z, pz);
-                left.outer[left_len - 1] = mesh.twin(f_prev); // left → z
+                debug_assert!(left_len <= i + 2 && i + 2 < k + 2);
+                // SAFETY: `left_len ≤ i + 2 < k + 2`, the chain buffers' room (each step adds
+                // at most one vertex to the left chain); `f_prev` is a half-edge of the mesh.
+                unsafe {
+                    *left.vertices.get_unchecked_mut(left_len) = z;
+                    *left.points.get_unchecked_mut(left_len) = pz;
+                    *left.outer.get_unchecked_mut(left_len - 1) = mesh.twin_unchecked(f_prev);
+                }
                 left_len += 1;
             }
             if next.is_none_or(|h| h == f_prev) {
                 right_start -= 1;
-                right.set(right_start, z, pz);
-                right.outer[right_start] = mesh.twin(f_next); // z → right
+                debug_assert!(right_start >= k - i - 1);
+                // SAFETY: `k − i − 1 ≤ right_start < k`, within the chain buffers' room (each
+                // step adds at most one vertex to the right chain); `f_next` is a half-edge of
+                // the mesh.
+                unsafe {
+                    *right.vertices.get_unchecked_mut(right_start) = z;
+                    *right.points.get_unchecked_mut(right_start) = pz;
+                    *right.outer.get_unchecked_mut(right_start) = mesh.twin_unchecked(f_next);
+                }
             }
         }
         debug_assert!(left.vertices[left_len - 1] == b && right.vertices[right_start] == b);
