@@ -360,42 +360,63 @@ impl Planner<'_> {
         }
         tasks[0] = (0, v.len() as u32 - 1, join);
         let mut pending = 1;
+        // The unchecked accesses below rest on three invariants: every task has
+        // `first + 2 ≤ last < v.len()` (and `points`, `inner` have the length of `v`), so its apex
+        // lies strictly between; `pending ≤ v.len()` (above); and `*planned < slots.len()`,
+        // because a polygon of `m` vertices makes `m − 2` triangles and the two chains hold at
+        // most `k + 5` vertices for the `k + 1` slots (see `retriangulate_cavity`).
+        debug_assert!(v.len() >= 3 && points.len() == v.len() && inner.len() == v.len());
         while pending > 0 {
             pending -= 1;
-            let (first, last, join) = tasks[pending];
-            let (u, w) = (points[first as usize], points[last as usize]);
+            // SAFETY: `pending < v.len() ≤ tasks.len()`.
+            let (first, last, join) = unsafe { *tasks.get_unchecked(pending) };
+            let (first, last) = (first as usize, last as usize);
+            debug_assert!(first + 2 <= last && last < v.len());
+            // SAFETY: `first < last < points.len()`.
+            let (u, w) = unsafe { (*points.get_unchecked(first), *points.get_unchecked(last)) };
             // A triangle's worth of polygon has its apex already: no circle to compare.
             let (apex, left) = if last == first + 2 {
-                (
-                    first + 1,
-                    P::orient2d(u, w, points[first as usize + 1]) > 0.0,
-                )
+                // SAFETY: `first + 1 < last < points.len()`.
+                let c = unsafe { *points.get_unchecked(first + 1) };
+                (first + 1, P::orient2d(u, w, c) > 0.0)
             } else {
-                let candidates = &points[first as usize + 1..last as usize];
+                // SAFETY: `first + 1 < last ≤ points.len()`.
+                let candidates = unsafe { points.get_unchecked(first + 1..last) };
                 let (best, left) = P::smallest_circle_left(u, w, candidates);
-                (first + 1 + best as u32, left)
+                (first + 1 + best, left)
             };
             if !left {
                 return false;
             }
-            let t = slots[*planned];
-            triangles[*planned] = (
-                [v[first as usize], v[last as usize], v[apex as usize]],
-                join,
-            );
+            debug_assert!(*planned < slots.len() && *planned < triangles.len());
+            // SAFETY: `*planned < slots.len() = triangles.len()`; `first < apex < last <
+            // v.len()`.
+            let t = unsafe {
+                let t = *slots.get_unchecked(*planned);
+                let corners = [first, last, apex].map(|i| *v.get_unchecked(i));
+                *triangles.get_unchecked_mut(*planned) = (corners, join);
+                t
+            };
             *planned += 1;
             // Triangle (u, w, c): w → c at 3t + 1 faces the sub-polygon (apex … last), c → u at
             // 3t + 2 the sub-polygon (first … apex); a side on the chain is a boundary edge.
+            // SAFETY (the writes): `first < apex < v.len() = inner.len()`, and the two pushes
+            // keep `pending ≤ v.len()` (pending sub-polygons have disjoint interiors of at
+            // least one chain vertex each).
             if last == apex + 1 {
-                inner[apex as usize] = t.edge(1);
+                unsafe { *inner.get_unchecked_mut(apex) = t.edge(1) };
             } else {
-                tasks[pending] = (apex, last, t.edge(1));
+                unsafe {
+                    *tasks.get_unchecked_mut(pending) = (apex as u32, last as u32, t.edge(1))
+                };
                 pending += 1;
             }
             if apex == first + 1 {
-                inner[first as usize] = t.edge(2);
+                unsafe { *inner.get_unchecked_mut(first) = t.edge(2) };
             } else {
-                tasks[pending] = (first, apex, t.edge(2));
+                unsafe {
+                    *tasks.get_unchecked_mut(pending) = (first as u32, apex as u32, t.edge(2))
+                };
                 pending += 1;
             }
         }
