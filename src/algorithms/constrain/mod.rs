@@ -572,15 +572,23 @@ impl<P: Predicates> Constrainer<P> {
 /// is that half-edge's destination (no `next` to compute, no second read).
 fn edge_between(mesh: &Mesh, a: VertexId, b: VertexId) -> Option<EdgeId> {
     let start = mesh.vertex_edge(a)?;
+    if start.raw() >= mesh.edge_count() {
+        // Not a half-edge of the mesh (never seen): the checked search.
+        return mesh.find_edge(a, b);
+    }
     let mut e = start;
     loop {
         let back = e.prev(); // y → a
-        let f = mesh.twin(back); // a → y
+                             // SAFETY: `e` is a half-edge of the mesh (`a`'s recorded one, checked above, or a twin
+                             // read below that is not NONE: twins are half-edges of the mesh), so is `back`, in its
+                             // triangle.
+        let f = unsafe { mesh.twin_unchecked(back) }; // a → y
         if f == EdgeId::NONE {
             // An open star (a boundary not covered by ghosts): the general search.
             return mesh.find_edge(a, b);
         }
-        if mesh.origin(back) == b {
+        // SAFETY: as above.
+        if unsafe { mesh.corner_unchecked(back) } == b {
             return Some(f);
         }
         if f == start {
