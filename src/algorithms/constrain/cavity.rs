@@ -93,7 +93,7 @@ impl<P: Predicates> Constrainer<P> {
             // Tags would have to be assigned per new triangle; the flip path does that.
             return false;
         }
-        let crossed = &self.scratch.crossed;
+        let (crossed, beyond) = (&self.scratch.crossed, &self.scratch.beyond);
         let CavityScratch {
             left,
             right,
@@ -129,38 +129,44 @@ impl<P: Predicates> Constrainer<P> {
         right.set(k, r1, mesh.point(r1));
         right.outer[k] = mesh.twin(h1.prev()); // r1 → a
         let (mut left_len, mut right_start) = (2, k);
-        for (i, (&h, slot)) in crossed.iter().zip(&mut slots[1..]).enumerate() {
-            // SAFETY (the three unchecked reads): `crossed` holds half-edges of the mesh as it
-            // is (cross_edges walked them), and the twin of a half-edge and the other half-edges
-            // of its triangle are half-edges of the mesh.
-            let f = unsafe { mesh.twin_unchecked(h) }; // left → right, in the next triangle
-            *slot = f.triangle();
-            let (f_next, f_prev) = Mesh::next_and_prev(f);
-            let z = unsafe { mesh.corner_unchecked(f_prev) };
-            let pz = mesh.point(z);
-            // The next crossed edge is right → z when z is on the left, z → left otherwise.
-            let next = crossed.get(i + 1).copied();
-            if next.is_none_or(|h| h == f_next) {
+        // The triangles beyond the crossed edges, as the walk recorded them (`Beyond`): each adds
+        // its apex to one chain, the last one (apex b) to both.
+        debug_assert_eq!(beyond.len(), k);
+        for (i, (step, slot)) in beyond.iter().zip(&mut slots[1..]).enumerate() {
+            *slot = step.other.triangle();
+            let (z, pz) = (step.apex, step.point);
+            let (to_left, to_right) = match step.side {
+                Side::Left => (step.other, EdgeId::NONE),
+                Side::Right => (EdgeId::NONE, step.other),
+                Side::End => {
+                    let (f_next, f_prev) = Mesh::next_and_prev(step.other);
+                    (f_prev, f_next)
+                }
+            };
+            if to_left != EdgeId::NONE {
                 debug_assert!(left_len <= i + 2 && i + 2 < k + 2);
                 // SAFETY: `left_len ≤ i + 2 < k + 2`, the chain buffers' room (each step adds
-                // at most one vertex to the left chain); `f_prev` is a half-edge of the mesh.
+                // at most one vertex to the left chain); `to_left` is a half-edge of the mesh
+                // (of the triangle beyond a crossed one).
                 unsafe {
                     *left.vertices.get_unchecked_mut(left_len) = z;
                     *left.points.get_unchecked_mut(left_len) = pz;
-                    *left.outer.get_unchecked_mut(left_len - 1) = mesh.twin_unchecked(f_prev);
+                    // left → z
+                    *left.outer.get_unchecked_mut(left_len - 1) = mesh.twin_unchecked(to_left);
                 }
                 left_len += 1;
             }
-            if next.is_none_or(|h| h == f_prev) {
+            if to_right != EdgeId::NONE {
                 right_start -= 1;
                 debug_assert!(right_start >= k - i - 1);
                 // SAFETY: `k − i − 1 ≤ right_start < k`, within the chain buffers' room (each
-                // step adds at most one vertex to the right chain); `f_next` is a half-edge of
+                // step adds at most one vertex to the right chain); `to_right` is a half-edge of
                 // the mesh.
                 unsafe {
                     *right.vertices.get_unchecked_mut(right_start) = z;
                     *right.points.get_unchecked_mut(right_start) = pz;
-                    *right.outer.get_unchecked_mut(right_start) = mesh.twin_unchecked(f_next);
+                    // z → right
+                    *right.outer.get_unchecked_mut(right_start) = mesh.twin_unchecked(to_right);
                 }
             }
         }
