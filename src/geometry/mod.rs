@@ -345,12 +345,16 @@ mod tests {
         let mut s = 11u64;
         let mut rand =
             || crate::algorithms::delaunay::order::splitmix64(&mut s) as f64 / u64::MAX as f64;
-        for round in 0..20_000 {
-            let u = [rand(), rand()];
-            let w = [rand(), rand()];
-            let c = [rand(), rand()];
+        for round in 0..40_000 {
+            // Scales and offsets around the base (the error bound's scale is the base's length),
+            // and tested points far beyond it.
+            let (scale, offset) = [(1.0, 0.0), (1e-7, 3.0), (1e6, -1e7), (1.0, 1e4)][round % 4];
+            let mut point = || [offset + scale * rand(), offset + scale * rand()];
+            let (u, w, c) = (point(), point(), point());
             let p = if round % 2 == 0 {
-                [rand(), rand()]
+                let far = if round % 8 == 0 { 1e3 } else { 1.0 };
+                let q = point();
+                [u[0] + far * (q[0] - u[0]), u[1] + far * (q[1] - u[1])]
             } else {
                 // Nearly on the circle through u, w, c: the circumcentre plus the radius, rounded.
                 let (centre, _, _) = circumcenter(u, w, c);
@@ -387,6 +391,30 @@ mod tests {
             }
         });
         assert_eq!(Exact::smallest_circle(u, w, &candidates), by_default);
+        // The orientation that comes with the choice is the apex's, also for lists with points
+        // right of the base, on its line, or nearly so.
+        for round in 0..2_000 {
+            let n = 1 + round % 7;
+            let candidates: Vec<Point> = (0..n)
+                .map(|i| match (round + i) % 5 {
+                    0 => [rand() * 5.0, 0.0],
+                    1 => [rand() * 5.0, -rand()],
+                    2 => [rand() * 5.0, 1e-17 * rand()],
+                    _ => [rand() * 5.0, rand()],
+                })
+                .collect();
+            let (best, left) = Exact::smallest_circle_left(u, w, &candidates);
+            assert_eq!(best, Exact::smallest_circle(u, w, &candidates));
+            let by_default = (1..n).fold(0, |best, i| {
+                if Exact::incircle(u, w, candidates[best], candidates[i]) > 0.0 {
+                    i
+                } else {
+                    best
+                }
+            });
+            assert_eq!(best, by_default, "round {round}");
+            assert_eq!(left, Exact::orient2d(u, w, candidates[best]) > 0.0);
+        }
     }
 
     #[test]
