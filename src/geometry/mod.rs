@@ -38,6 +38,14 @@ pub trait Predicates: Copy + Send + Sync + 'static {
         }
         best
     }
+
+    /// [`Predicates::smallest_circle`] and whether its choice `c` lies strictly left of
+    /// `u → w` (`orient2d(u, w, c) > 0`).
+    #[inline]
+    fn smallest_circle_left(u: Point, w: Point, candidates: &[Point]) -> (usize, bool) {
+        let best = Self::smallest_circle(u, w, candidates);
+        (best, Self::orient2d(u, w, candidates[best]) > 0.0)
+    }
 }
 
 /// Exact predicates (the default).
@@ -70,36 +78,97 @@ const PENCIL_ERRBOUND: f64 = (16.0 + 128.0 * EPSILON) * EPSILON;
 /// which is `−incircle(u, w, c, p)` (a cyclic shift of four rows is an odd permutation), is
 /// `dx·A + dy·B + dlift·C` with `A = blift·ay − alift·by`, `B = alift·bx − blift·ax`,
 /// `C = ax·by − bx·ay`: five products per point instead of a full determinant.
+///
+/// The error bound is `PENCIL_ERRBOUND` times the permanent `|dx|·pA + |dy|·pB + dlift·pC` (the
+/// `p*` being the sums of absolute values of the coefficients' products), itself bounded by a
+/// quadratic in `dlift` so that a test costs one product and one sum for its bound: with
+/// `m = pA + pB` (at least both) and any scale `s > 0`, `|dx| + |dy| ≤ √(2·dlift) ≤ dlift/(2s) + s` (the
+/// arithmetic–geometric mean inequality), so the permanent is at most
+/// `dlift·(pC + m/(2s)) + m·s`. The scale is half the base's L1 length, which keeps the bound
+/// within a small factor of the permanent for points about as far from `u` as `w` is (the chain
+/// between the base's ends); a looser bound only sends more tests to the exact stages.
 struct PencilFrame {
     u: Point,
     w: Point,
     c: Point,
-    /// A, B, C and the matching permanents (sums of absolute values of their products).
+    /// A, B, C.
     coefficients: [f64; 3],
-    permanents: [f64; 3],
+    /// The error bound at `p` is `dlift·bound_quadratic + bound_constant`.
+    bound_quadratic: f64,
+    bound_constant: f64,
+    /// Shewchuk's orientation filter for `orient2d(w, c, u)`, which is `orient2d(u, w, c)`:
+    /// `C`, whose sign is exact when it exceeds this bound.
+    orientation_bound: f64,
 }
 
-impl PencilFrame {
+/// What the pencil frames over one base `u → w` share: `a = w − u`, its lift, and the scale of
+/// the error bound (see [`PencilFrame`]): `s = (|ax| + |ay|)/2` and `1/(2s)`.
+struct PencilBase {
+    u: Point,
+    w: Point,
+    a: Point,
+    alift: f64,
+    scale: f64,
+    inverse_double_scale: f64,
+}
+
+impl PencilBase {
     #[inline(always)]
-    fn new(u: Point, w: Point, c: Point) -> PencilFrame {
-        let (ax, ay) = (w[0] - u[0], w[1] - u[1]);
-        let (bx, by) = (c[0] - u[0], c[1] - u[1]);
-        let alift = ax * ax + ay * ay;
+    fn new(u: Point, w: Point) -> PencilBase {
+        let a = [w[0] - u[0], w[1] - u[1]];
+        let l1 = a[0].abs() + a[1].abs();
+        PencilBase {
+            u,
+            w,
+            a,
+            alift: a[0] * a[0] + a[1] * a[1],
+            scale: 0.5 * l1,
+            // An infinite or NaN bound (a base below the subnormal range) fails every filter
+            // test, and the exact stages decide: still correct.
+            inverse_double_scale: 1.0 / l1,
+        }
+    }
+
+    /// The frame of the circle through `u`, `w` and `c`.
+    #[inline(always)]
+    fn frame(&self, c: Point) -> PencilFrame {
+        let [ax, ay] = self.a;
+        let alift = self.alift;
+        let (bx, by) = (c[0] - self.u[0], c[1] - self.u[1]);
         let blift = bx * bx + by * by;
         let (a1, a2) = (blift * ay, alift * by);
         let (b1, b2) = (alift * bx, blift * ax);
         let (c1, c2) = (ax * by, bx * ay);
+        let linear = (a1.abs() + a2.abs()) + (b1.abs() + b2.abs());
+        let orientation_permanent = c1.abs() + c2.abs();
+        let quadratic = orientation_permanent + linear * self.inverse_double_scale;
         PencilFrame {
-            u,
-            w,
+            u: self.u,
+            w: self.w,
             c,
             coefficients: [a1 - a2, b1 - b2, c1 - c2],
-            permanents: [
-                a1.abs() + a2.abs(),
-                b1.abs() + b2.abs(),
-                c1.abs() + c2.abs(),
-            ],
+            bound_quadratic: PENCIL_ERRBOUND * quadratic,
+            bound_constant: PENCIL_ERRBOUND * (linear * self.scale),
+            orientation_bound: CCW_ERRBOUND_A * orientation_permanent,
         }
+    }
+}
+
+impl PencilFrame {
+    #[cfg(test)]
+    fn new(u: Point, w: Point, c: Point) -> PencilFrame {
+        PencilBase::new(u, w).frame(c)
+    }
+
+    /// Whether `c` lies strictly left of `u → w`: `C` is Shewchuk's floating-point
+    /// `orient2d(w, c, u)` (`(w − u) × (c − u)`, the same evaluation), exact in sign beyond his
+    /// bound; otherwise the adaptive test decides.
+    #[inline(always)]
+    fn apex_strictly_left(&self) -> bool {
+        if self.coefficients[2] > self.orientation_bound {
+            return true;
+        }
+        Exact::orient2d(self.u, self.w, self.c) > 0.0
     }
 
     /// Whether `p` lies strictly inside the circle through `u`, `w`, `c` (counter-clockwise):
@@ -109,12 +178,14 @@ impl PencilFrame {
         let (dx, dy) = (p[0] - self.u[0], p[1] - self.u[1]);
         let dlift = dx * dx + dy * dy;
         let [a, b, c] = self.coefficients;
-        let [pa, pb, pc] = self.permanents;
         let det = dx * a + dy * b + dlift * c;
-        let permanent = dx.abs() * pa + dy.abs() * pb + dlift * pc;
-        let errbound = PENCIL_ERRBOUND * permanent;
-        if det > errbound || -det > errbound {
-            return det < 0.0;
+        let errbound = dlift * self.bound_quadratic + self.bound_constant;
+        // Outside is the common answer (one replacement in several tests): tested first.
+        if det > errbound {
+            return false;
+        }
+        if det < -errbound {
+            return true;
         }
         robust::incircle(coord(self.u), coord(self.w), coord(self.c), coord(p)) > 0.0
     }
@@ -162,15 +233,23 @@ impl Predicates for Exact {
     /// circle instead of once per test ([`PencilFrame`]); exact like every test here.
     #[inline]
     fn smallest_circle(u: Point, w: Point, candidates: &[Point]) -> usize {
+        Self::smallest_circle_left(u, w, candidates).0
+    }
+
+    /// The choice of [`Exact::smallest_circle`]; the orientation of the chosen apex comes with
+    /// its frame (its `C` term is the orientation determinant).
+    #[inline]
+    fn smallest_circle_left(u: Point, w: Point, candidates: &[Point]) -> (usize, bool) {
+        let base = PencilBase::new(u, w);
         let mut best = 0;
-        let mut frame = PencilFrame::new(u, w, candidates[0]);
+        let mut frame = base.frame(candidates[0]);
         for (i, &p) in candidates.iter().enumerate().skip(1) {
             if frame.strictly_inside(p) {
                 best = i;
-                frame = PencilFrame::new(u, w, p);
+                frame = base.frame(p);
             }
         }
-        best
+        (best, frame.apex_strictly_left())
     }
 }
 
@@ -266,12 +345,16 @@ mod tests {
         let mut s = 11u64;
         let mut rand =
             || crate::algorithms::delaunay::order::splitmix64(&mut s) as f64 / u64::MAX as f64;
-        for round in 0..20_000 {
-            let u = [rand(), rand()];
-            let w = [rand(), rand()];
-            let c = [rand(), rand()];
+        for round in 0..40_000 {
+            // Scales and offsets around the base (the error bound's scale is the base's length),
+            // and tested points far beyond it.
+            let (scale, offset) = [(1.0, 0.0), (1e-7, 3.0), (1e6, -1e7), (1.0, 1e4)][round % 4];
+            let mut point = || [offset + scale * rand(), offset + scale * rand()];
+            let (u, w, c) = (point(), point(), point());
             let p = if round % 2 == 0 {
-                [rand(), rand()]
+                let far = if round % 8 == 0 { 1e3 } else { 1.0 };
+                let q = point();
+                [u[0] + far * (q[0] - u[0]), u[1] + far * (q[1] - u[1])]
             } else {
                 // Nearly on the circle through u, w, c: the circumcentre plus the radius, rounded.
                 let (centre, _, _) = circumcenter(u, w, c);
@@ -308,6 +391,30 @@ mod tests {
             }
         });
         assert_eq!(Exact::smallest_circle(u, w, &candidates), by_default);
+        // The orientation that comes with the choice is the apex's, also for lists with points
+        // right of the base, on its line, or nearly so.
+        for round in 0..2_000 {
+            let n = 1 + round % 7;
+            let candidates: Vec<Point> = (0..n)
+                .map(|i| match (round + i) % 5 {
+                    0 => [rand() * 5.0, 0.0],
+                    1 => [rand() * 5.0, -rand()],
+                    2 => [rand() * 5.0, 1e-17 * rand()],
+                    _ => [rand() * 5.0, rand()],
+                })
+                .collect();
+            let (best, left) = Exact::smallest_circle_left(u, w, &candidates);
+            assert_eq!(best, Exact::smallest_circle(u, w, &candidates));
+            let by_default = (1..n).fold(0, |best, i| {
+                if Exact::incircle(u, w, candidates[best], candidates[i]) > 0.0 {
+                    i
+                } else {
+                    best
+                }
+            });
+            assert_eq!(best, by_default, "round {round}");
+            assert_eq!(left, Exact::orient2d(u, w, candidates[best]) > 0.0);
+        }
     }
 
     #[test]

@@ -24,9 +24,7 @@ use std::collections::{HashSet, VecDeque};
 use crate::algorithms::delaunay::{Inserter, Location};
 use crate::error::Error;
 use crate::geometry::{Point, Predicates};
-use crate::mesh::{
-    EdgeId, Ghosts, Lawson, LineStep, Mesh, Quad, TriangleId, VertexId, GHOST, NONE,
-};
+use crate::mesh::{EdgeId, Ghosts, Lawson, Mesh, Quad, TriangleId, VertexId, GHOST, NONE};
 
 // The parts: this file inserts segments (walks, crossings, vertices on segments, hull segments,
 // point location for holes and regions); `cavity` recovers a segment across crossed triangles;
@@ -103,8 +101,33 @@ struct Scratch {
     /// The half-edges the walk crossed, in order; each runs from the right of the segment to its
     /// left, in the triangle before the crossing.
     crossed: Vec<EdgeId>,
+    /// Per crossed half-edge, what lies beyond it (see [`Beyond`]), in the same order.
+    beyond: Vec<Beyond>,
     /// Buffers of the cavity retriangulation.
     cavity: CavityScratch,
+}
+
+/// The triangle beyond a crossed half-edge, as the line walk found it: its corner `apex` (at
+/// `point`) opposite the crossed edge, on the `side` of the segment, and `other`, its half-edge
+/// on the cavity's boundary: the one into the apex on that side's chain when the walk goes on
+/// (from the left end of the crossed edge when the apex is left, to its right end otherwise),
+/// or the twin of the crossed half-edge when the apex ends the walk (both its other half-edges
+/// are then on the boundary). The cavity's chains are read from these without a second walk.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Beyond {
+    pub(super) other: EdgeId,
+    pub(super) apex: VertexId,
+    pub(super) point: Point,
+    pub(super) side: Side,
+}
+
+/// Where the apex beyond a crossed edge lies: left or right of the segment, or on it (where the
+/// walk ends).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Side {
+    Left,
+    Right,
+    End,
 }
 
 impl<P: Predicates> Constrainer<P> {
@@ -335,6 +358,7 @@ impl<P: Predicates> Constrainer<P> {
     /// Walks from `a` toward `b`; the edges crossed are left in `self.scratch.crossed`.
     fn walk(&mut self, a: VertexId, b: VertexId) -> Result<Walk, Error> {
         self.scratch.crossed.clear();
+        self.scratch.beyond.clear();
         let mesh = self.inserter.mesh();
         let (pa, pb) = (self.pt(a), self.pt(b));
         // Often the segment is an edge already (a polygon's sides between close vertices): look
@@ -388,7 +412,7 @@ impl<P: Predicates> Constrainer<P> {
         };
         // Cross edges until a vertex on the segment is reached.
         Ok(
-            match cross_edges::<P>(mesh, pa, pb, e.next(), true, &mut self.scratch.crossed) {
+            match cross_edges::<P>(mesh, pa, pb, e.next(), true, &mut self.scratch) {
                 Ok(z) => Walk::Crosses(z),
                 Err(h) => Walk::HitsSegment(h),
             },
@@ -445,15 +469,7 @@ impl<P: Predicates> Constrainer<P> {
         h: EdgeId,
     ) -> Option<VertexId> {
         let (pa, pb) = (self.pt(a), self.pt(b));
-        let z = cross_edges::<P>(
-            self.inserter.mesh(),
-            pa,
-            pb,
-            h,
-            false,
-            &mut self.scratch.crossed,
-        )
-        .ok()?;
+        let z = cross_edges::<P>(self.inserter.mesh(), pa, pb, h, false, &mut self.scratch).ok()?;
         (z != b).then_some(z)
     }
 
@@ -572,15 +588,23 @@ impl<P: Predicates> Constrainer<P> {
 /// is that half-edge's destination (no `next` to compute, no second read).
 fn edge_between(mesh: &Mesh, a: VertexId, b: VertexId) -> Option<EdgeId> {
     let start = mesh.vertex_edge(a)?;
+    if start.raw() >= mesh.edge_count() {
+        // Not a half-edge of the mesh (never seen): the checked search.
+        return mesh.find_edge(a, b);
+    }
     let mut e = start;
     loop {
         let back = e.prev(); // y → a
-        let f = mesh.twin(back); // a → y
+                             // SAFETY: `e` is a half-edge of the mesh (`a`'s recorded one, checked above, or a twin
+                             // read below that is not NONE: twins are half-edges of the mesh), so is `back`, in its
+                             // triangle.
+        let f = unsafe { mesh.twin_unchecked(back) }; // a → y
         if f == EdgeId::NONE {
             // An open star (a boundary not covered by ghosts): the general search.
             return mesh.find_edge(a, b);
         }
-        if mesh.origin(back) == b {
+        // SAFETY: as above.
+        if unsafe { mesh.corner_unchecked(back) } == b {
             return Some(f);
         }
         if f == start {
@@ -593,23 +617,58 @@ fn edge_between(mesh: &Mesh, a: VertexId, b: VertexId) -> Option<EdgeId> {
 /// Crosses edges along the line from `pa` to `pb`, starting with half-edge `h` (right → left of
 /// the line, which crosses it), until the line reaches a vertex: `Ok(vertex)`; or, with
 /// `stop_at_segments`, until the next edge to cross is a segment: `Err(that half-edge)`. The
-/// half-edges crossed are pushed to `crossed`.
+/// half-edges crossed are pushed to `scratch.crossed`, what lies beyond each to
+/// `scratch.beyond`.
+///
+/// The steps of [`Mesh::walk_line`], written out: they record the triangles beyond (which the
+/// cavity's chains are made of), and read the mesh unchecked.
 fn cross_edges<P: Predicates>(
     mesh: &Mesh,
     pa: Point,
     pb: Point,
     h: EdgeId,
     stop_at_segments: bool,
-    crossed: &mut Vec<EdgeId>,
+    scratch: &mut Scratch,
 ) -> Result<VertexId, EdgeId> {
-    for step in mesh.walk_line::<P, _>(pa, pb, h, |o| on_line(o, pa, pb)) {
-        match step {
-            LineStep::Cross(h) if stop_at_segments && mesh.is_segment(h) => return Err(h),
-            LineStep::Cross(h) => crossed.push(h),
-            LineStep::Vertex(z) => return Ok(z),
+    let Scratch {
+        crossed, beyond, ..
+    } = scratch;
+    let mut h = h;
+    loop {
+        if stop_at_segments && mesh.is_segment(h) {
+            return Err(h);
         }
+        crossed.push(h);
+        // SAFETY (both reads): `h` is a half-edge of the mesh (the caller's, or one of the
+        // triangle beyond the previous one), so are its twin and that twin's triangle's others.
+        let f = unsafe { mesh.twin_unchecked(h) }; // left → right in the next triangle
+        let (f_next, f_prev) = Mesh::next_and_prev(f);
+        let apex = unsafe { mesh.corner_unchecked(f_prev) };
+        let point = mesh.point(apex);
+        let orientation = P::orient2d(pa, pb, point);
+        if on_line(orientation, pa, pb) {
+            beyond.push(Beyond {
+                other: f,
+                apex,
+                point,
+                side: Side::End,
+            });
+            return Ok(apex);
+        }
+        // Right → apex when the apex is left of the line, apex → left otherwise.
+        let (other, side, next) = if orientation > 0.0 {
+            (f_prev, Side::Left, f_next)
+        } else {
+            (f_next, Side::Right, f_prev)
+        };
+        beyond.push(Beyond {
+            other,
+            apex,
+            point,
+            side,
+        });
+        h = next;
     }
-    unreachable!("a line walk ends at a vertex")
 }
 
 /// The Lawson policy of the constrained restore: the stack holds vertex pairs (flips renumber
