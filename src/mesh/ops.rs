@@ -374,41 +374,75 @@ impl Mesh {
 
     /// [`Self::rewrite_triangle`] for a whole retriangulated region, in order: triangle
     /// `slots[j]` takes the corners `triangles[j].0`, and its slot-0 half-edge is joined to
-    /// `triangles[j].1` unless that is [`EdgeId::NONE`]. (One pass, the tracking tested once.)
-    pub fn rewrite_triangles(
+    /// `triangles[j].1` unless that is [`EdgeId::NONE`]. (One pass, the tracking tested once,
+    /// no bounds checks: segment recovery rewrites every crossed triangle through here.)
+    ///
+    /// # Safety
+    /// Every slot is a triangle of the mesh, every corner a vertex of the mesh (not
+    /// [`GHOST`]), and every join other than [`EdgeId::NONE`] a half-edge of the mesh.
+    pub unsafe fn rewrite_triangles_unchecked(
         &mut self,
         slots: &[TriangleId],
         triangles: &[([VertexId; 3], EdgeId)],
     ) {
         let tracks_segments = !self.segment.is_empty();
         let tracks_vertex_edges = !self.vertex_edge.is_empty();
+        // The per-array lengths the contract's indices are measured against (checked once).
+        assert!(self.twins.len() == self.corners.len());
+        assert!(!tracks_segments || self.segment.len() == self.corners.len());
+        assert!(!tracks_vertex_edges || self.vertex_edge.len() == self.points.len());
         for (&t, &(corners, join)) in slots.iter().zip(triangles) {
             let base = 3 * t.index();
             let corners = corners.map(VertexId::raw);
-            self.corners[base..base + 3].copy_from_slice(&corners);
-            if tracks_segments {
-                self.segment[base..base + 3].fill(NONE);
+            debug_assert!(base + 3 <= self.corners.len());
+            debug_assert!(corners.iter().all(|&v| (v as usize) < self.points.len()));
+            debug_assert!(join == EdgeId::NONE || join.index() < self.twins.len());
+            // SAFETY: `t` is a triangle of the mesh (the contract), so its three slots are in
+            // `corners`, and in `segment` (asserted the same length) where tracked.
+            unsafe {
+                self.corners
+                    .get_unchecked_mut(base..base + 3)
+                    .copy_from_slice(&corners);
+                if tracks_segments {
+                    self.segment.get_unchecked_mut(base..base + 3).fill(NONE);
+                }
             }
             if tracks_vertex_edges {
                 for (k, v) in corners.into_iter().enumerate() {
-                    self.vertex_edge[v as usize] = (base + k) as u32;
+                    // SAFETY: `v` is a vertex of the mesh (the contract), `< points.len()`,
+                    // asserted the length of `vertex_edge`.
+                    unsafe { *self.vertex_edge.get_unchecked_mut(v as usize) = (base + k) as u32 };
                 }
             }
             if join != EdgeId::NONE {
-                self.link_raw(base as u32, join.raw());
+                // SAFETY: `base` is a half-edge of the mesh (slot 0 of `t`), `join` one by the
+                // contract.
+                unsafe { self.link_unchecked(EdgeId::new(base as u32), join) };
             }
         }
     }
 
     /// [`Self::link_to_outer`] for each pair `(inner[i], outer[i])` whose `outer[i]` is not
-    /// [`EdgeId::NONE`].
-    pub fn link_all_to_outer(&mut self, inner: &[EdgeId], outer: &[EdgeId]) {
+    /// [`EdgeId::NONE`], without bounds checks.
+    ///
+    /// # Safety
+    /// Every `inner[i]` whose `outer[i]` is not [`EdgeId::NONE`] is a half-edge of the mesh,
+    /// and so is every `outer[i]` other than [`EdgeId::NONE`].
+    pub unsafe fn link_all_to_outer_unchecked(&mut self, inner: &[EdgeId], outer: &[EdgeId]) {
         let tracks_segments = !self.segment.is_empty();
+        // The length the contract's half-edges are measured against (checked once).
+        assert!(!tracks_segments || self.segment.len() == self.corners.len());
         for (&inner, &outer) in inner.iter().zip(outer) {
             if outer != EdgeId::NONE {
-                self.link_raw(inner.raw(), outer.raw());
-                if tracks_segments {
-                    self.segment[inner.index()] = self.segment[outer.index()];
+                debug_assert!(inner.index().max(outer.index()) < self.corners.len());
+                // SAFETY: both are half-edges of the mesh (the contract): below the length of
+                // `twins`, and of `segment` where tracked (asserted above).
+                unsafe {
+                    self.link_unchecked(inner, outer);
+                    if tracks_segments {
+                        *self.segment.get_unchecked_mut(inner.index()) =
+                            *self.segment.get_unchecked(outer.index());
+                    }
                 }
             }
         }

@@ -257,10 +257,17 @@ impl<P: Predicates> Constrainer<P> {
         let mesh = self.inserter.mesh_mut();
         // Every cavity vertex is a corner of a new triangle: its outgoing half-edge is refreshed
         // there (the old one may have been in the cavity).
-        mesh.rewrite_triangles(slots, triangles);
+        // SAFETY: the slots are the triangles of crossed half-edges and of the half-edges beyond
+        // them; every corner is a chain vertex, whose point was read (checked) from the mesh, so
+        // none is the ghost; each join is NONE or a half-edge of a slot.
+        unsafe { mesh.rewrite_triangles_unchecked(slots, triangles) };
         for (chain, range) in [(&*left, left_range), (&*right, right_range)] {
             let edges = range.start..range.end - 1;
-            mesh.link_all_to_outer(&chain.inner[edges.clone()], &chain.outer[edges]);
+            // SAFETY: the plan wrote every chain edge's inner half-edge, one of a slot; each
+            // outer one is NONE or a twin read from the mesh (a half-edge of it).
+            unsafe {
+                mesh.link_all_to_outer_unchecked(&chain.inner[edges.clone()], &chain.outer[edges])
+            };
         }
         for pair in inner_links.chunks_exact(2) {
             // The segment did not cross this edge, so it may be a segment: it stays one.
