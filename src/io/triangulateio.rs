@@ -227,12 +227,12 @@ impl Array {
     }
 
     /// Whether its allocation can become the caller's array: it is malloc's ([`HAND_OVER`])
-    /// and it has one (an empty vector may have none).
+    /// and holds items (an empty vector may have no allocation, and shrinking one frees it).
     fn can_hand_over(&self) -> bool {
         HAND_OVER
             && match self {
-                Array::F64(v) => v.capacity() > 0,
-                Array::I32(v) => v.capacity() > 0,
+                Array::F64(v) => !v.is_empty(),
+                Array::I32(v) => !v.is_empty(),
             }
     }
 
