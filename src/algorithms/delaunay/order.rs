@@ -636,6 +636,43 @@ mod tests {
         }
     }
 
+    /// One side of a split, ordered straight from all the points, is the order of all the points
+    /// with the other side left out (each kept point has its round and key among all of them),
+    /// and its points travel with it; a side with every point or none is the whole order or
+    /// nothing.
+    #[test]
+    fn a_side_is_the_whole_order_restricted_to_it() {
+        let mut s = 11;
+        let mut unit = || splitmix64(&mut s) as f64 / u64::MAX as f64;
+        let uniform: Vec<Point> = (0..60_000).map(|_| [unit(), unit()]).collect();
+        let grid: Vec<Point> = (0..20_000)
+            .map(|i| [(i % 37) as f64, ((i * 7) % 23) as f64])
+            .collect();
+        for points in [&uniform, &grid, &uniform[..50].to_vec()] {
+            let (whole, _) = multiscale_order_and_points(points, None);
+            let split = points[points.len() / 3];
+            let sides: [&dyn Fn(Point) -> bool; 4] = [
+                &|p: Point| p[0] < split[0] || (p[0] == split[0] && p[1] <= split[1]),
+                &|p: Point| !(p[0] < split[0] || (p[0] == split[0] && p[1] <= split[1])),
+                &|_| true,
+                &|_| false,
+            ];
+            for keep in sides {
+                let mut room = vec![3u64; 2 * points.len()];
+                let (order, sorted) =
+                    multiscale_order_and_points_where(points, keep, Some(&mut room));
+                let expected: Vec<u32> = whole
+                    .iter()
+                    .copied()
+                    .filter(|&v| keep(points[v as usize]))
+                    .collect();
+                assert_eq!(order, expected);
+                let gathered: Vec<Point> = order.iter().map(|&v| points[v as usize]).collect();
+                assert_eq!(sorted, gathered);
+            }
+        }
+    }
+
     #[test]
     fn orders_are_permutations() {
         let mut s = 7;
