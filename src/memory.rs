@@ -42,14 +42,9 @@ pub(crate) fn prefer_huge_pages(start: *const u8, bytes: usize) {
     }
 }
 
-/// [`prefer_huge_pages`] for the whole allocation of `v` (its capacity).
-pub(crate) fn prefer_huge_pages_for<T>(v: &Vec<T>) {
-    prefer_huge_pages(v.as_ptr().cast(), v.capacity() * std::mem::size_of::<T>());
-}
-
 /// An empty vector with room for `capacity` elements, its pages to be huge ones.
 pub(crate) fn with_capacity_on_huge_pages<T>(capacity: usize) -> Vec<T> {
-    let v = Vec::with_capacity(capacity);
-    prefer_huge_pages_for(&v);
+    let v: Vec<T> = Vec::with_capacity(capacity);
+    prefer_huge_pages(v.as_ptr().cast(), v.capacity() * std::mem::size_of::<T>());
     v
 }

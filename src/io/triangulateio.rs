@@ -319,8 +319,9 @@ unsafe fn transfer_all(transfers: Vec<Transfer>) -> Result<(), Error> {
         })
         .collect();
     if two_cores && total >= PARALLEL_COPY_BYTES {
-        // Large outputs (a million points: some 44 MB, mostly fresh pages that the kernel
-        // faults in one by one) are copied in two halves, the second on another thread.
+        // Large copies (into the caller's buffers, or all outputs without `malloc-outputs`: a
+        // million points are some 44 MB, mostly fresh pages that the kernel faults in one by
+        // one) go in two halves, the second on another thread.
         std::thread::scope(|scope| {
             let spawned =
                 std::thread::Builder::new().spawn_scoped(scope, || copy_parts(&destinations, 1));

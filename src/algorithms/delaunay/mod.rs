@@ -438,16 +438,9 @@ pub struct Ordered {
 /// twins fill later, where separate buffers would be fresh pages twice (a fresh page costs
 /// microseconds).
 pub fn order_in_room(points: &[Point], kind: order::OrderKind, capacity: usize) -> Ordered {
-    let n = points.len();
-    let capacity = capacity.max(2 * n + 2);
-    let mut twins: Vec<u32> = crate::memory::with_capacity_on_huge_pages(3 * capacity);
-    let (order, sorted) = kind.order_and_points(points, Some(words_in_room_of(&mut twins, 2 * n)));
-    Ordered {
-        order,
-        sorted,
-        twins,
-        capacity,
-    }
+    in_room(points.len(), capacity, |room| {
+        kind.order_and_points(points, Some(room))
+    })
 }
 
 /// [`order_in_room`] in the default order of the points of `points` that `keep` accepts (one
@@ -457,14 +450,21 @@ pub fn order_where_in_room(
     keep: impl Fn(Point) -> bool,
     capacity: usize,
 ) -> Ordered {
-    let n = points.len();
+    in_room(points.len(), capacity, |room| {
+        order::multiscale_order_and_points_where(points, keep, Some(room))
+    })
+}
+
+/// The twin array to be, with room for `capacity` triangle slots (at least `2n + 2` for `n`
+/// points), and the order that `sort` computes in its spare room of two words per point.
+fn in_room(
+    n: usize,
+    capacity: usize,
+    sort: impl FnOnce(&mut [u64]) -> (Vec<u32>, Vec<Point>),
+) -> Ordered {
     let capacity = capacity.max(2 * n + 2);
     let mut twins: Vec<u32> = crate::memory::with_capacity_on_huge_pages(3 * capacity);
-    let (order, sorted) = order::multiscale_order_and_points_where(
-        points,
-        keep,
-        Some(words_in_room_of(&mut twins, 2 * n)),
-    );
+    let (order, sorted) = sort(words_in_room_of(&mut twins, 2 * n));
     Ordered {
         order,
         sorted,

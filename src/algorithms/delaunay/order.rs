@@ -362,6 +362,7 @@ fn sorted_words<const POINTS: bool>(
             break;
         }
     }
+    // From here on, `n` counts the kept points.
     let (words, sorted) = (&mut words[..m], &mut sorted[..m]);
     let n = m;
     // The bucket of a word: its round and the top bits of its key.
@@ -539,6 +540,19 @@ pub fn splitmix64(state: &mut u64) -> u64 {
 mod tests {
     use super::*;
 
+    /// `n` points uniform in the unit square, from the generator's state `s`.
+    fn uniform(n: usize, s: &mut u64) -> Vec<Point> {
+        let mut unit = || splitmix64(s) as f64 / u64::MAX as f64;
+        (0..n).map(|_| [unit(), unit()]).collect()
+    }
+
+    /// `n` points on a 37 × 23 grid: many ties of key and many duplicates.
+    fn grid(n: usize) -> Vec<Point> {
+        (0..n)
+            .map(|i| [(i % 37) as f64, ((i * 7) % 23) as f64])
+            .collect()
+    }
+
     #[test]
     fn hilbert_curve_visits_neighbouring_cells() {
         // Consecutive positions are adjacent cells: in the first 64×64 sub-square (which the
@@ -580,11 +594,9 @@ mod tests {
     #[test]
     fn both_ways_of_sorting_rounds_agree() {
         let mut s = 11;
+        let uniform = uniform(200_000, &mut s);
+        let grid = grid(50_000);
         let mut unit = || splitmix64(&mut s) as f64 / u64::MAX as f64;
-        let uniform: Vec<Point> = (0..200_000).map(|_| [unit(), unit()]).collect();
-        let grid: Vec<Point> = (0..50_000)
-            .map(|i| [(i % 37) as f64, ((i * 7) % 23) as f64])
-            .collect();
         let line: Vec<Point> = (0..3000).map(|i| [1.0, i as f64 * 0.5]).collect();
         let clustered: Vec<Point> = (0..100_000)
             .map(|i| {
@@ -642,12 +654,8 @@ mod tests {
     /// nothing.
     #[test]
     fn a_side_is_the_whole_order_restricted_to_it() {
-        let mut s = 11;
-        let mut unit = || splitmix64(&mut s) as f64 / u64::MAX as f64;
-        let uniform: Vec<Point> = (0..60_000).map(|_| [unit(), unit()]).collect();
-        let grid: Vec<Point> = (0..20_000)
-            .map(|i| [(i % 37) as f64, ((i * 7) % 23) as f64])
-            .collect();
+        let uniform = uniform(60_000, &mut 11);
+        let grid = grid(20_000);
         for points in [&uniform, &grid, &uniform[..50].to_vec()] {
             let (whole, _) = multiscale_order_and_points(points, None);
             let split = points[points.len() / 3];
