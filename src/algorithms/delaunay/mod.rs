@@ -460,7 +460,7 @@ pub fn order_where_in_room(
 fn in_room(
     n: usize,
     capacity: usize,
-    sort: impl FnOnce(&mut [u64]) -> (Vec<u32>, Vec<Point>),
+    sort: impl FnOnce(&mut [std::mem::MaybeUninit<u64>]) -> (Vec<u32>, Vec<Point>),
 ) -> Ordered {
     let capacity = capacity.max(2 * n + 2);
     let mut twins: Vec<u32> = crate::memory::with_capacity_on_huge_pages(3 * capacity);
@@ -484,19 +484,15 @@ pub fn triangulate_ordered<P: Predicates>(ordered: Ordered) -> InInsertionOrder 
     triangulate_with_twins::<P>(order, sorted, capacity, twins)
 }
 
-/// Up to `count` words (zeroed) in the spare room of `v` (fewer, or none, when it has less).
-fn words_in_room_of(v: &mut Vec<u32>, count: usize) -> &mut [u64] {
+/// Up to `count` words (uninitialized) in the spare room of `v` (fewer, or none, when it has
+/// less): the sort writes only the words it uses, so the pages beyond them stay untouched.
+fn words_in_room_of(v: &mut Vec<u32>, count: usize) -> &mut [std::mem::MaybeUninit<u64>] {
     let room = v.spare_capacity_mut();
     // SAFETY: a `MaybeUninit<u64>` may hold any bits, so viewing the aligned middle of the room
     // as such is sound; `align_to_mut` keeps the alignment of `u64`.
     let (_, words, _) = unsafe { room.align_to_mut::<std::mem::MaybeUninit<u64>>() };
     let count = count.min(words.len());
-    let words = &mut words[..count];
-    for w in words.iter_mut() {
-        w.write(0);
-    }
-    // SAFETY: every item was just initialized, and `MaybeUninit<u64>` has the layout of `u64`.
-    unsafe { &mut *(words as *mut [std::mem::MaybeUninit<u64>] as *mut [u64]) }
+    &mut words[..count]
 }
 
 /// Triangulates the points `sorted`, inserting them in their order, `order` giving the

@@ -12,6 +12,7 @@
 //! of inserting in plain Hilbert order.
 
 use crate::geometry::Point;
+use std::mem::MaybeUninit;
 
 const HILBERT_BITS: u32 = 16;
 
@@ -194,7 +195,7 @@ pub fn brio_order(points: &[Point], seed: u64) -> Vec<u32> {
 /// with room for two words per point (see [`OrderKind::order_and_points`]).
 pub fn multiscale_order_and_points(
     points: &[Point],
-    room: Option<&mut [u64]>,
+    room: Option<&mut [MaybeUninit<u64>]>,
 ) -> (Vec<u32>, Vec<Point>) {
     rounds_in_hilbert_order_and_points(points, |_| true, MULTISCALE_SEED, 3, room)
 }
@@ -206,7 +207,7 @@ pub fn multiscale_order_and_points(
 pub fn multiscale_order_and_points_where(
     points: &[Point],
     keep: impl Fn(Point) -> bool,
-    room: Option<&mut [u64]>,
+    room: Option<&mut [MaybeUninit<u64>]>,
 ) -> (Vec<u32>, Vec<Point>) {
     rounds_in_hilbert_order_and_points(points, keep, MULTISCALE_SEED, 3, room)
 }
@@ -215,7 +216,7 @@ pub fn multiscale_order_and_points_where(
 pub fn brio_order_and_points(
     points: &[Point],
     seed: u64,
-    room: Option<&mut [u64]>,
+    room: Option<&mut [MaybeUninit<u64>]>,
 ) -> (Vec<u32>, Vec<Point>) {
     rounds_in_hilbert_order_and_points(points, |_| true, seed, 1, room)
 }
@@ -234,7 +235,7 @@ impl OrderKind {
     pub fn order_and_points(
         self,
         points: &[Point],
-        room: Option<&mut [u64]>,
+        room: Option<&mut [MaybeUninit<u64>]>,
     ) -> (Vec<u32>, Vec<Point>) {
         match self {
             OrderKind::Multiscale => multiscale_order_and_points(points, room),
@@ -278,11 +279,16 @@ fn rounds_in_hilbert_order(points: &[Point], seed: u64, growth_bits: u32) -> Vec
     if points.len() >= 1 << INDEX_BITS {
         return rounds_in_hilbert_order_by_passes(points, seed, growth_bits);
     }
-    let n = points.len();
-    let mut room = vec![0u64; 2 * n];
-    sorted_words::<false>(points, |_| true, seed, growth_bits, &mut room);
+    let mut room = Vec::with_capacity(2 * points.len());
+    let (sorted, _) = sorted_words::<false>(
+        points,
+        |_| true,
+        seed,
+        growth_bits,
+        room.spare_capacity_mut(),
+    );
     let index_mask = (1u64 << INDEX_BITS) - 1;
-    room[n..].iter().map(|&w| (w & index_mask) as u32).collect()
+    sorted.iter().map(|&w| (w & index_mask) as u32).collect()
 }
 
 /// [`rounds_in_hilbert_order`] and the points in that order. The points travel with their
@@ -297,7 +303,7 @@ fn rounds_in_hilbert_order_and_points(
     keep: impl Fn(Point) -> bool,
     seed: u64,
     growth_bits: u32,
-    room: Option<&mut [u64]>,
+    room: Option<&mut [MaybeUninit<u64>]>,
 ) -> (Vec<u32>, Vec<Point>) {
     let n = points.len();
     if n >= 1 << INDEX_BITS {
@@ -317,16 +323,13 @@ fn rounds_in_hilbert_order_and_points(
     let room = match room {
         Some(room) if room.len() >= 2 * n => room,
         _ => {
-            own = vec![0u64; 2 * n];
-            &mut own[..]
+            own = Vec::with_capacity(2 * n);
+            own.spare_capacity_mut()
         }
     };
-    let sorted_points = sorted_words::<true>(points, keep, seed, growth_bits, room);
+    let (sorted, sorted_points) = sorted_words::<true>(points, keep, seed, growth_bits, room);
     let index_mask = (1u64 << INDEX_BITS) - 1;
-    let order = room[n..n + sorted_points.len()]
-        .iter()
-        .map(|&w| (w & index_mask) as u32)
-        .collect();
+    let order = sorted.iter().map(|&w| (w & index_mask) as u32).collect();
     (order, sorted_points)
 }
 
@@ -334,37 +337,39 @@ fn rounds_in_hilbert_order_and_points(
 const INDEX_BITS: u32 = 27;
 
 /// Sorts the words of [`rounds_in_hilbert_order`] for the points that `keep` accepts (`m` of
-/// the `n`) into `room[n..n + m]` (`room[..m]` is the sort's spare room) and returns (with
-/// `POINTS`) the kept points in the same order (else an empty list). A kept point's round and
-/// Hilbert key are those it has among all the points.
+/// the `n`) into `room[m..2m]` (`room[..m]` is the sort's spare room), which it returns, and
+/// (with `POINTS`) the kept points in the same order (else an empty list). A kept point's round
+/// and Hilbert key are those it has among all the points. Only the `2m` words used are written:
+/// the room's pages beyond them are not touched (a fresh page costs microseconds here, and the
+/// room of one side of a split is sized for all the points).
 /// Fewer than 2^[`INDEX_BITS`] points; `room` holds at least two words per point.
-fn sorted_words<const POINTS: bool>(
+fn sorted_words<'r, const POINTS: bool>(
     points: &[Point],
     keep: impl Fn(Point) -> bool,
     seed: u64,
     growth_bits: u32,
-    room: &mut [u64],
-) -> Vec<Point> {
+    room: &'r mut [MaybeUninit<u64>],
+) -> (&'r [u64], Vec<Point>) {
     const TOP_BITS: u32 = 8;
-    let n = points.len();
-    let (words, sorted) = room[..2 * n].split_at_mut(n);
     let key = hilbert_key_of(points);
-    let mut state = seed;
     let rounds = rounds_by_trailing_zeros(growth_bits);
     let mut m = 0;
     for (i, &p) in points.iter().enumerate() {
-        // Written unconditionally and kept by advancing `m`: the side of a split is a coin
-        // toss per point, and a branch on it would be mispredicted half the time.
-        let round = u64::from(next_round(&mut state, &rounds));
-        words[m] = (round << (32 + INDEX_BITS)) | (u64::from(key(p)) << INDEX_BITS) | i as u64;
-        m += usize::from(keep(p));
-        if m == n {
-            break;
+        // Only the kept points' words: a branch that is mispredicted about half the time on
+        // one side of a split costs less than a key and a round for each point of the other.
+        if keep(p) {
+            let round = u64::from(round_at(seed, i, &rounds));
+            room[m]
+                .write((round << (32 + INDEX_BITS)) | (u64::from(key(p)) << INDEX_BITS) | i as u64);
+            m += 1;
         }
     }
     // From here on, `n` counts the kept points.
-    let (words, sorted) = (&mut words[..m], &mut sorted[..m]);
     let n = m;
+    let (words, sorted) = room[..2 * n].split_at_mut(n);
+    // SAFETY: the loop above wrote the first `m` words, and `MaybeUninit<u64>` has the layout
+    // of `u64`.
+    let words = unsafe { &mut *(words as *mut [MaybeUninit<u64>] as *mut [u64]) };
     // The bucket of a word: its round and the top bits of its key.
     let bucket = |w: u64| (w >> (32 + INDEX_BITS - TOP_BITS)) as usize;
     let mut starts = vec![0usize; (ROUNDS << TOP_BITS) + 1];
@@ -384,7 +389,7 @@ fn sorted_words<const POINTS: bool>(
     let room_for_points = &mut sorted_points.spare_capacity_mut()[..if POINTS { n } else { 0 }];
     for &w in words.iter() {
         let b = bucket(w);
-        sorted[next[b]] = w;
+        sorted[next[b]].write(w);
         if POINTS {
             // The words are in input order: these reads go forward through the points.
             room_for_points[next[b]].write(points[(w & index_mask) as usize]);
@@ -396,6 +401,8 @@ fn sorted_words<const POINTS: bool>(
         // partition 0..n, and each bucket's slots are filled by its words), within capacity `n`.
         unsafe { sorted_points.set_len(n) };
     }
+    // SAFETY: as for the points, the scatter wrote each of the `n` words of `sorted`.
+    let sorted = unsafe { &mut *(sorted as *mut [MaybeUninit<u64>] as *mut [u64]) };
     drop(next);
     let spare = words;
     let largest = starts.windows(2).map(|r| r[1] - r[0]).max().unwrap_or(0);
@@ -419,7 +426,7 @@ fn sorted_words<const POINTS: bool>(
             INDEX_BITS,
         );
     }
-    sorted_points
+    (sorted, sorted_points)
 }
 
 /// Sorts the words of one bucket (their top bits equal, their indices increasing) by the 24
@@ -527,9 +534,20 @@ fn rounds_in_hilbert_order_by_passes(points: &[Point], seed: u64, growth_bits: u
     order
 }
 
+/// [`next_round`] for the point at `index`: the generator's state after `index` steps from
+/// `seed` is `seed + index·γ` (SplitMix64 steps by a constant), so a point's round needs none
+/// of the points before it.
+fn round_at(seed: u64, index: usize, rounds: &[u8; 65]) -> u32 {
+    let mut state = seed.wrapping_add(SPLITMIX_GAMMA.wrapping_mul(index as u64));
+    next_round(&mut state, rounds)
+}
+
+/// SplitMix64's step.
+const SPLITMIX_GAMMA: u64 = 0x9E37_79B9_7F4A_7C15;
+
 /// SplitMix64 (Steele, Lea and Flood 2014): a tiny, good-quality seeded generator.
 pub fn splitmix64(state: &mut u64) -> u64 {
-    *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    *state = state.wrapping_add(SPLITMIX_GAMMA);
     let mut z = *state;
     z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
@@ -632,7 +650,11 @@ mod tests {
         for points in [&uniform, &grid, &clustered, &uniform[..70].to_vec()] {
             for (order, sorted) in [
                 multiscale_order_and_points(points, None),
-                brio_order_and_points(points, 42, Some(&mut vec![7; 2 * points.len()])),
+                brio_order_and_points(
+                    points,
+                    42,
+                    Some(&mut vec![MaybeUninit::new(7); 2 * points.len()]),
+                ),
             ] {
                 let gathered: Vec<Point> = order.iter().map(|&v| points[v as usize]).collect();
                 assert_eq!(sorted, gathered);
@@ -666,7 +688,7 @@ mod tests {
                 &|_| false,
             ];
             for keep in sides {
-                let mut room = vec![3u64; 2 * points.len()];
+                let mut room = vec![MaybeUninit::new(3u64); 2 * points.len()];
                 let (order, sorted) =
                     multiscale_order_and_points_where(points, keep, Some(&mut room));
                 let expected: Vec<u32> = whole
