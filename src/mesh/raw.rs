@@ -194,6 +194,34 @@ impl Mesh {
         extend_on_two_threads(&mut self.twins, twins, offset);
     }
 
+    /// Faults in the pages of the corner and twin arrays' room (their capacity beyond the
+    /// triangles in use), a chunk of each in turn, while `keep_going()` (see
+    /// [`crate::memory::prefault_while`]): the merge's first half, done before the other, readies
+    /// the room that the other's triangles are appended into instead of waiting.
+    pub fn prefault_room_while(&self, keep_going: impl Fn() -> bool) {
+        let room = |v: &Vec<u32>| {
+            let spare = v.capacity() - v.len();
+            // SAFETY: `len <= capacity`: one past the used part, inside the allocation.
+            (unsafe { v.as_ptr().add(v.len()) }.cast::<u8>(), 4 * spare)
+        };
+        let (corners, twins) = (room(&self.corners), room(&self.twins));
+        const STEP: usize = 1 << 20;
+        let mut done = 0;
+        while done < corners.1.max(twins.1) {
+            for (start, bytes) in [corners, twins] {
+                if done < bytes {
+                    let step = STEP.min(bytes - done);
+                    // SAFETY: `done + step <= bytes`, inside the array's room.
+                    let at = unsafe { start.add(done) };
+                    if !crate::memory::prefault_while(at, step, &keep_going) {
+                        return;
+                    }
+                }
+            }
+            done += STEP;
+        }
+    }
+
     /// The `u32` view of the mesh (see the module docs).
     #[inline(always)]
     pub fn raw(&self) -> RawMesh<'_> {

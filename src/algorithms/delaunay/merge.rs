@@ -86,6 +86,11 @@ pub fn triangulate_two_halves<P: Predicates>(
     let (l, r) = std::thread::scope(|scope| {
         let right_job = scope.spawn(|| triangulate_half::<P>(&points, split, false, 0));
         let l = triangulate_half::<P>(&points, split, true, 2 * n + 4);
+        // Done first: the right half's triangles are to be appended into the left mesh's room,
+        // whose fresh pages are faulted in meanwhile rather than by the copy after the join.
+        if let Some(l) = &l {
+            l.mesh.prefault_room_while(|| !right_job.is_finished());
+        }
         // A panic in the right half's thread (a bug) is not hidden behind a sequential retry:
         // it goes on to `pipeline::triangulate`, which reports it as `Error::Internal`.
         let r = right_job
