@@ -50,37 +50,37 @@ pub(crate) fn with_capacity_on_huge_pages<T>(capacity: usize) -> Vec<T> {
     v
 }
 
-/// How much [`prefault_while`] faults in between two looks at whether to go on: a few hundred
-/// microseconds of work.
-const PREFAULT_CHUNK: usize = 1 << 20;
+/// How much [`prefault_while`] faults in between two looks at whether to go on: some
+/// hundred microseconds of work.
+const PREFAULT_CHUNK: usize = 1 << 18;
 
-/// Faults in, for writing, the pages of the `bytes` bytes at `start` (memory of a live
-/// allocation of the caller's, about to be written), a chunk at a time while `keep_going()` says so: work for a thread that
-/// would otherwise wait, so that a later copy into that memory finds its pages in place (a
-/// fresh 4 KiB page costs some two microseconds of kernel time on the project's machine; a
-/// copy of 24 MB into fresh pages spends most of its time there). Returns whether it went
-/// through the whole range. A hint: where the kernel lacks `MADV_POPULATE_WRITE` (Linux
-/// before 5.14, other systems) nothing happens.
-pub(crate) fn prefault_while(
-    start: *const u8,
-    bytes: usize,
-    keep_going: impl Fn() -> bool,
-) -> bool {
+/// Faults in, for writing, the pages of the address ranges `ranges` (each inside one live
+/// allocation of the caller's, about to be written), a chunk of each in turn while
+/// `keep_going()` says so: work for a thread that would otherwise wait, so that a later copy
+/// into that memory finds its pages in place (a fresh 4 KiB page costs some two microseconds
+/// of kernel time on the project's machine; a copy of 24 MB into fresh pages spends most of its
+/// time there). A hint: where the kernel lacks `MADV_POPULATE_WRITE` (Linux before 5.14, other
+/// systems) nothing happens. The memory's contents never change, so a range whose allocation
+/// is freed meanwhile is harmless too (the call fails, or faults in pages of whatever lies
+/// there now).
+pub(crate) fn prefault_while(ranges: &[std::ops::Range<usize>], keep_going: impl Fn() -> bool) {
     const PAGE: usize = 4096;
-    let first = (start as usize).next_multiple_of(PAGE);
-    let end = (start as usize + bytes) / PAGE * PAGE;
-    let mut at = first;
-    while at < end {
-        if !keep_going() {
-            return false;
+    let mut at: Vec<std::ops::Range<usize>> = ranges
+        .iter()
+        .map(|r| r.start.next_multiple_of(PAGE)..r.end / PAGE * PAGE)
+        .collect();
+    while at.iter().any(|r| r.start < r.end) {
+        for r in at.iter_mut().filter(|r| r.start < r.end) {
+            if !keep_going() {
+                return;
+            }
+            let chunk = PREFAULT_CHUNK.min(r.end - r.start);
+            if !populate_for_writing(r.start, chunk) {
+                return;
+            }
+            r.start += chunk;
         }
-        let chunk = PREFAULT_CHUNK.min(end - at);
-        if !populate_for_writing(at, chunk) {
-            return false;
-        }
-        at += chunk;
     }
-    true
 }
 
 /// `MADV_POPULATE_WRITE` on whole pages at `at` (see [`prefault_while`]); false where it failed
@@ -88,9 +88,9 @@ pub(crate) fn prefault_while(
 fn populate_for_writing(at: usize, bytes: usize) -> bool {
     #[cfg(target_os = "linux")]
     {
-        // SAFETY: whole pages of one live allocation of the caller's (`prefault_while`'s
-        // contract); MADV_POPULATE_WRITE maps them as a write would, without changing any
-        // contents (written or not), and its failure is harmless.
+        // SAFETY: not a memory access: MADV_POPULATE_WRITE maps the pages as a write would,
+        // without changing any contents (written or not, whatever allocation they belong to),
+        // and its failure is harmless.
         unsafe { libc::madvise(at as *mut libc::c_void, bytes, libc::MADV_POPULATE_WRITE) == 0 }
     }
     #[cfg(not(target_os = "linux"))]

@@ -155,18 +155,24 @@ impl Mesh {
         t
     }
 
-    /// [`Mesh::with_capacity`] whose twin array is `twins`' allocation (emptied, grown to the
-    /// room needed): memory the caller used as scratch, whose pages are already in place.
+    /// [`Mesh::with_capacity`] whose twin and corner arrays are `twins`' and `corners`'
+    /// allocations (emptied, grown to the room needed): allocated earlier by the caller (the
+    /// twins' room used as scratch, whose pages are then already in place; the arrays' place
+    /// known to another thread).
     pub fn with_capacity_reusing(
         points: Vec<Point>,
         triangles: usize,
-        mut twins: Vec<u32>,
+        [mut twins, mut corners]: [Vec<u32>; 2],
     ) -> Mesh {
-        twins.clear();
-        twins.reserve(3 * triangles);
+        for v in [&mut twins, &mut corners] {
+            v.clear();
+            if v.capacity() < 3 * triangles {
+                *v = crate::memory::with_capacity_on_huge_pages(3 * triangles);
+            }
+        }
         Mesh {
             points,
-            corners: crate::memory::with_capacity_on_huge_pages(3 * triangles),
+            corners,
             twins,
             segment: Vec::new(),
             vertex_edge: Vec::new(),
@@ -195,31 +201,15 @@ impl Mesh {
     }
 
     /// Faults in the pages of the corner and twin arrays' room (their capacity beyond the
-    /// triangles in use), a chunk of each in turn, while `keep_going()` (see
-    /// [`crate::memory::prefault_while`]): the merge's first half, done before the other, readies
-    /// the room that the other's triangles are appended into instead of waiting.
+    /// triangles in use) while `keep_going()` (see [`crate::memory::prefault_while`]): the
+    /// merge's first half, done before the other, readies the room that the other's triangles
+    /// are appended into instead of waiting.
     pub fn prefault_room_while(&self, keep_going: impl Fn() -> bool) {
         let room = |v: &Vec<u32>| {
-            let spare = v.capacity() - v.len();
-            // SAFETY: `len <= capacity`: one past the used part, inside the allocation.
-            (unsafe { v.as_ptr().add(v.len()) }.cast::<u8>(), 4 * spare)
+            let start = v.as_ptr() as usize;
+            start + 4 * v.len()..start + 4 * v.capacity()
         };
-        let (corners, twins) = (room(&self.corners), room(&self.twins));
-        const STEP: usize = 1 << 20;
-        let mut done = 0;
-        while done < corners.1.max(twins.1) {
-            for (start, bytes) in [corners, twins] {
-                if done < bytes {
-                    let step = STEP.min(bytes - done);
-                    // SAFETY: `done + step <= bytes`, inside the array's room.
-                    let at = unsafe { start.add(done) };
-                    if !crate::memory::prefault_while(at, step, &keep_going) {
-                        return;
-                    }
-                }
-            }
-            done += STEP;
-        }
+        crate::memory::prefault_while(&[room(&self.corners), room(&self.twins)], keep_going);
     }
 
     /// The `u32` view of the mesh (see the module docs).

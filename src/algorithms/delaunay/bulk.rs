@@ -19,16 +19,18 @@ use crate::mesh::{EdgeId, Ghosts, Mesh, TriangleId, VertexId, GHOST};
 /// out as duplicates, by increasing vertex: (vertex, the vertex at its position in the mesh). The mesh's arrays have room for `capacity` triangle
 /// slots (at least the `2n + 2` that the build may use): a caller that appends more triangles
 /// later asks for them here, so that no array is reallocated (and copied) on the way. The twin
-/// array is `twins`' allocation (see [`Mesh::with_capacity_reusing`]).
+/// and corner arrays are `twins`' and `corners`' allocations (see
+/// [`Mesh::with_capacity_reusing`]).
 pub(super) fn triangulate_in_order<P: Predicates>(
     points: Vec<Point>,
     capacity: usize,
     twins: Vec<u32>,
+    corners: Vec<u32>,
 ) -> (Mesh, Vec<(u32, u32)>) {
     let n = points.len() as u32;
     let mut duplicates = Vec::new();
     let capacity = capacity.max(2 * points.len() + 2);
-    let mut mesh = Mesh::with_capacity_reusing(points, capacity, twins);
+    let mut mesh = Mesh::with_capacity_reusing(points, capacity, [twins, corners]);
     // Seed triangle: the first point, the first point distinct from it, and the first point not
     // collinear with those two.
     if n == 0 {

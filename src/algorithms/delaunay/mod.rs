@@ -429,7 +429,19 @@ pub struct Ordered {
     /// The points in insertion order.
     pub sorted: Vec<Point>,
     twins: Vec<u32>,
+    corners: Vec<u32>,
     capacity: usize,
+}
+
+impl Ordered {
+    /// Where the mesh's corner and twin arrays to be lie: the address range of each one's
+    /// whole capacity (for [`crate::memory::prefault_while`] by another thread).
+    pub fn array_extents(&self) -> [std::ops::Range<usize>; 2] {
+        [&self.corners, &self.twins].map(|v| {
+            let start = v.as_ptr() as usize;
+            start..start + 4 * v.capacity()
+        })
+    }
 }
 
 /// Orders `points` (`kind`) for a mesh with room for `capacity` triangle slots (at least the
@@ -455,8 +467,9 @@ pub fn order_where_in_room(
     })
 }
 
-/// The twin array to be, with room for `capacity` triangle slots (at least `2n + 2` for `n`
-/// points), and the order that `sort` computes in its spare room of two words per point.
+/// The mesh's twin and corner arrays to be, with room for `capacity` triangle slots (at least
+/// `2n + 2` for `n` points), and the order that `sort` computes in the twins' spare room of two
+/// words per point.
 fn in_room(
     n: usize,
     capacity: usize,
@@ -464,11 +477,13 @@ fn in_room(
 ) -> Ordered {
     let capacity = capacity.max(2 * n + 2);
     let mut twins: Vec<u32> = crate::memory::with_capacity_on_huge_pages(3 * capacity);
+    let corners: Vec<u32> = crate::memory::with_capacity_on_huge_pages(3 * capacity);
     let (order, sorted) = sort(words_in_room_of(&mut twins, 2 * n));
     Ordered {
         order,
         sorted,
         twins,
+        corners,
         capacity,
     }
 }
@@ -479,9 +494,10 @@ pub fn triangulate_ordered<P: Predicates>(ordered: Ordered) -> InInsertionOrder 
         order,
         sorted,
         twins,
+        corners,
         capacity,
     } = ordered;
-    triangulate_with_twins::<P>(order, sorted, capacity, twins)
+    triangulate_with_arrays::<P>(order, sorted, capacity, [twins, corners])
 }
 
 /// Up to `count` words (uninitialized) in the spare room of `v` (fewer, or none, when it has
@@ -501,19 +517,19 @@ pub fn triangulate_in_insertion_order<P: Predicates>(
     order: Vec<u32>,
     sorted: Vec<Point>,
 ) -> InInsertionOrder {
-    triangulate_with_twins::<P>(order, sorted, 0, Vec::new())
+    triangulate_with_arrays::<P>(order, sorted, 0, [Vec::new(), Vec::new()])
 }
 
 /// [`triangulate_in_insertion_order`] with room for `capacity` triangle slots, the twin array
 /// in `twins`' allocation.
-fn triangulate_with_twins<P: Predicates>(
+fn triangulate_with_arrays<P: Predicates>(
     order: Vec<u32>,
     sorted: Vec<Point>,
     capacity: usize,
-    twins: Vec<u32>,
+    [twins, corners]: [Vec<u32>; 2],
 ) -> InInsertionOrder {
     debug_assert_eq!(sorted.len(), order.len());
-    let (mesh, sorted_duplicates) = triangulate_in_order::<P>(sorted, capacity, twins);
+    let (mesh, sorted_duplicates) = triangulate_in_order::<P>(sorted, capacity, twins, corners);
     let mut names = order;
     // The first copy of each inserted point (by the caller's numbers) takes its place.
     let mut first_copy: std::collections::HashMap<u32, u32> = std::collections::HashMap::new();
