@@ -71,6 +71,14 @@ fn triangulate_half<P: Predicates>(
     })
 }
 
+/// Frees the points of a half's mesh (the merged mesh takes all the points) before the room
+/// is faulted in, so that the room's pages take their place in the peak memory; now, while
+/// the other thread builds, rather than after the join (a free unmaps, which waits for the
+/// other thread's faults).
+fn free_points_for_the_room(mesh: &mut Mesh) {
+    drop(mesh.replace_points(Vec::new()));
+}
+
 /// A point near the lexicographic median: the median of an evenly spaced sample (the halves
 /// need not be equal, only both large; the result does not depend on the split).
 fn split_point(points: &[Point]) -> Point {
@@ -102,24 +110,30 @@ pub fn triangulate_two_halves<P: Predicates>(
     let left_done = AtomicBool::new(false);
     let (l, r) = std::thread::scope(|scope| {
         let right_job = scope.spawn(|| {
-            let r = triangulate_half::<P>(&points, split, false, 0, |_| {});
-            if let (Some(r), Some(arrays)) = (&r, left_arrays.get()) {
-                // The left half has the other points; its triangle slots (2 per point, less
-                // 2) end before this.
-                let left_points = n - r.mesh.vertex_count() as usize;
-                let from = 12 * (2 * left_points).saturating_sub(2);
-                let room = |a: &Range<usize>| (a.start + from).min(a.end)..a.end;
-                let ranges: [Range<usize>; 2] = std::array::from_fn(|k| room(&arrays[k]));
-                prefault_while(&ranges, || !left_done.load(Ordering::Relaxed));
+            let mut r = triangulate_half::<P>(&points, split, false, 0, |_| {});
+            if let (Some(r), Some(arrays)) = (&mut r, left_arrays.get()) {
+                if !left_done.load(Ordering::Relaxed) {
+                    // The left half has the other points; its triangle slots (2 per point,
+                    // less 2) end before this.
+                    let left_points = n - r.mesh.vertex_count() as usize;
+                    let from = 12 * (2 * left_points).saturating_sub(2);
+                    let room = |a: &Range<usize>| (a.start + from).min(a.end)..a.end;
+                    let ranges: [Range<usize>; 2] = std::array::from_fn(|k| room(&arrays[k]));
+                    free_points_for_the_room(&mut r.mesh);
+                    prefault_while(&ranges, || !left_done.load(Ordering::Relaxed));
+                }
             }
             r
         });
-        let l = triangulate_half::<P>(&points, split, true, 2 * n + 4, |arrays| {
+        let mut l = triangulate_half::<P>(&points, split, true, 2 * n + 4, |arrays| {
             let _ = left_arrays.set(arrays);
         });
         left_done.store(true, Ordering::Relaxed);
-        if let Some(l) = &l {
-            l.mesh.prefault_room_while(|| !right_job.is_finished());
+        if let Some(l) = &mut l {
+            if !right_job.is_finished() {
+                free_points_for_the_room(&mut l.mesh);
+                l.mesh.prefault_room_while(|| !right_job.is_finished());
+            }
         }
         // A panic in the right half's thread (a bug) is not hidden behind a sequential retry:
         // it goes on to `pipeline::triangulate`, which reports it as `Error::Internal`.
