@@ -9,7 +9,7 @@
 use crate::data::{Input, Output, VoronoiOutput};
 use crate::geometry::Point;
 use crate::mesh::raw::{triangle_of, RawMesh, GHOST};
-use crate::mesh::{Mesh, NONE};
+use crate::mesh::{Mesh, TriangleId, NONE};
 use crate::options::Options;
 
 /// Whether the outputs of a Delaunay triangulation of the input points can be built by
@@ -54,15 +54,21 @@ pub fn delaunay_outputs(
             .point_markers
             .map_or_else(|| vec![0; n], <[i32]>::to_vec)
     });
+    // Numbered as the caller's points from the first index 0: the corners need no rewriting,
+    // and the ghosts' slots are filled from the end instead of a pass over all triangles.
+    let ghost_ring = (names.is_none() && options.first_index() == 0)
+        .then(|| mesh.ghost_ring())
+        .flatten();
     let parts = mesh.into_corners_and_points();
     let (mut corners, mut points) = (parts.corners, Some(parts.points));
     let names = names.map(|(names, caller_points)| {
         drop(points.replace(caller_points));
         names
     });
-    let (kept, ghosts) = match names {
-        Some(names) => compact(&mut corners, options, &mut markers, |v| names[v as usize]),
-        None => compact(&mut corners, options, &mut markers, |v| v),
+    let (kept, ghosts) = match (names, ghost_ring) {
+        (Some(names), _) => compact(&mut corners, options, &mut markers, |v| names[v as usize]),
+        (None, Some(ring)) => fill_ghost_slots(&mut corners, ring, &mut markers),
+        (None, None) => compact(&mut corners, options, &mut markers, |v| v),
     };
     corners.truncate(kept);
     let triangle_count = kept / 3;
@@ -123,6 +129,41 @@ fn compact(
         kept += 3;
     }
     (kept, ghosts)
+}
+
+/// [`compact`] for corners kept as they are (the caller's numbers, first index 0) with the
+/// ghosts known (`ring`, from [`Mesh::ghost_ring`]): each ghost's slot below the kept count
+/// takes a real triangle from a slot above it, so the work is proportional to the hull, not
+/// to the mesh (the triangles' order is not Triangle's anyway). Marks the boundary vertices
+/// as `compact` does.
+fn fill_ghost_slots(
+    corners: &mut [u32],
+    ring: Vec<TriangleId>,
+    markers: &mut Option<Vec<i32>>,
+) -> (usize, usize) {
+    let mut ghosts: Vec<usize> = ring.into_iter().map(TriangleId::index).collect();
+    if let Some(markers) = markers.as_mut() {
+        for &g in &ghosts {
+            for &v in &corners[3 * g..3 * g + 3] {
+                if v != GHOST && markers[v as usize] == 0 {
+                    markers[v as usize] = 1;
+                }
+            }
+        }
+    }
+    ghosts.sort_unstable();
+    let count = corners.len() / 3;
+    let kept = count - ghosts.len();
+    let (holes, ghosts_above) = ghosts.split_at(ghosts.partition_point(|&g| g < kept));
+    // The real triangles above `kept`: as many as the ghosts' slots below it.
+    let mut ghosts_above = ghosts_above.iter().peekable();
+    let mut real_above = (kept..count).filter(|&t| ghosts_above.next_if_eq(&&t).is_none());
+    for &hole in holes {
+        if let Some(t) = real_above.next() {
+            corners.copy_within(3 * t..3 * t + 3, 3 * hole);
+        }
+    }
+    (3 * kept, ghosts.len())
 }
 
 /// The same array as `i32` values (vertex numbers below 2^31 keep their value), without a pass

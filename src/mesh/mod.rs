@@ -172,6 +172,32 @@ impl Mesh {
         self.triangle(t).contains(&GHOST)
     }
 
+    /// The ghost triangles (one per hull edge), in order around the hull: the ring walked from
+    /// the ghost nearest the end of the arrays (found by a backward scan, at once where the last
+    /// triangle made was a ghost, as after the two-core merge), each ghost's next across its
+    /// half-edge from the vertex at infinity. `None` without a ghost, or where the walk does not
+    /// close within the mesh's triangles (not a proper ring).
+    pub fn ghost_ring(&self) -> Option<Vec<TriangleId>> {
+        let count = self.triangle_count();
+        let start = (0..count)
+            .rev()
+            .map(TriangleId::new)
+            .find(|&t| self.is_ghost(t))?;
+        let mut ring = vec![start];
+        let mut t = start;
+        loop {
+            let from_infinity = t.edges().into_iter().find(|&e| self.origin(e) == GHOST)?;
+            t = self.twin(from_infinity).triangle();
+            if t == start {
+                return Some(ring);
+            }
+            if ring.len() as u32 >= count || !self.is_ghost(t) {
+                return None;
+            }
+            ring.push(t);
+        }
+    }
+
     /// The half-edge from `a` to `b`, if they are joined by an edge (needs vertex tracking).
     pub fn find_edge(&self, a: VertexId, b: VertexId) -> Option<EdgeId> {
         self.star(a).find(|&e| self.dest(e) == b)
