@@ -29,26 +29,37 @@ pub const PARALLEL_THRESHOLD: usize = 20_000;
 struct Half {
     mesh: Mesh,
     duplicate_of: Vec<(u32, u32)>,
-    /// The half's insertion order, no longer needed but freed only after the join: freeing
-    /// a large array unmaps it, which waits for the other thread's faults and prefaulting
-    /// (measured: a 2 MB free in the right half's thread took 5–8 ms while the left prefaulted).
-    _names: Vec<u32>,
+    /// The half's insertion order, no longer needed, but freed only when that cannot stall the
+    /// other thread: freeing a large array unmaps it, which waits for the other thread's
+    /// faults (measured: a 2 MB free in the right half's thread took 5–8 ms while the left
+    /// prefaulted).
+    names: Vec<u32>,
+}
+
+impl Half {
+    /// Frees what the half no longer needs (its points: the merged mesh takes all the points;
+    /// its order) before its thread faults in the room, so that the room's pages take their
+    /// place in the peak memory: done by the half finished first, while the other builds.
+    fn free_for_the_room(&mut self) {
+        drop(self.mesh.replace_points(Vec::new()));
+        drop(std::mem::take(&mut self.names));
+    }
 }
 
 /// Triangulates the points on one side of the split point `split` (lexicographically; its
 /// copies on the left) in a mesh with room for `capacity` triangle slots, numbered as in
 /// `points`; `None` when the side has fewer than three points or all of them collinear.
-/// `arrays` is told where the mesh's corner and twin arrays lie as soon as they exist.
+/// `corners` is told where the mesh's corner array lies as soon as it exists.
 fn triangulate_half<P: Predicates>(
     points: &[Point],
     split: Point,
     left: bool,
     capacity: usize,
-    arrays: impl FnOnce([Range<usize>; 2]),
+    corners: impl FnOnce(Range<usize>),
 ) -> Option<Half> {
     let on_side = |p: Point| (p[0] < split[0] || (p[0] == split[0] && p[1] <= split[1])) == left;
     let ordered = order_where_in_room(points, on_side, capacity);
-    arrays(ordered.array_extents());
+    corners(ordered.corners_extent());
     if ordered.sorted.len() < 3 {
         return None;
     }
@@ -67,16 +78,8 @@ fn triangulate_half<P: Predicates>(
     Some(Half {
         mesh,
         duplicate_of: duplicates,
-        _names: names,
+        names,
     })
-}
-
-/// Frees the points of a half's mesh (the merged mesh takes all the points) before the room
-/// is faulted in, so that the room's pages take their place in the peak memory; now, while
-/// the other thread builds, rather than after the join (a free unmaps, which waits for the
-/// other thread's faults).
-fn free_points_for_the_room(mesh: &mut Mesh) {
-    drop(mesh.replace_points(Vec::new()));
 }
 
 /// A point near the lexicographic median: the median of an evenly spaced sample (the halves
@@ -104,35 +107,37 @@ pub fn triangulate_two_halves<P: Predicates>(
     // The left mesh gets room for both halves' triangles (2n - 4 slots, and the two ghosts of
     // the merge): the right half's are appended without reallocating. Each thread orders its
     // side straight from all the points.
-    // Whichever half is done first faults in the pages of the left mesh's room that the
-    // right half's triangles are appended into (`prefault_while`), rather than wait.
-    let left_arrays: OnceLock<[Range<usize>; 2]> = OnceLock::new();
+    // Whichever half is done first faults in the pages of the left mesh's corner room that the
+    // right half's triangles are appended into (`prefault_while`), rather than wait. Not the
+    // twins' room too: with both halves' arrays alive, that would add 12 bytes per vertex to
+    // the peak memory.
+    let left_corners: OnceLock<Range<usize>> = OnceLock::new();
     let left_done = AtomicBool::new(false);
     let (l, r) = std::thread::scope(|scope| {
         let right_job = scope.spawn(|| {
             let mut r = triangulate_half::<P>(&points, split, false, 0, |_| {});
-            if let (Some(r), Some(arrays)) = (&mut r, left_arrays.get()) {
+            if let (Some(r), Some(corners)) = (&mut r, left_corners.get()) {
                 if !left_done.load(Ordering::Relaxed) {
                     // The left half has the other points; its triangle slots (2 per point,
                     // less 2) end before this.
                     let left_points = n - r.mesh.vertex_count() as usize;
                     let from = 12 * (2 * left_points).saturating_sub(2);
-                    let room = |a: &Range<usize>| (a.start + from).min(a.end)..a.end;
-                    let ranges: [Range<usize>; 2] = std::array::from_fn(|k| room(&arrays[k]));
-                    free_points_for_the_room(&mut r.mesh);
-                    prefault_while(&ranges, || !left_done.load(Ordering::Relaxed));
+                    let room = (corners.start + from).min(corners.end)..corners.end;
+                    r.free_for_the_room();
+                    prefault_while(&[room], || !left_done.load(Ordering::Relaxed));
                 }
             }
             r
         });
-        let mut l = triangulate_half::<P>(&points, split, true, 2 * n + 4, |arrays| {
-            let _ = left_arrays.set(arrays);
+        let mut l = triangulate_half::<P>(&points, split, true, 2 * n + 4, |corners| {
+            let _ = left_corners.set(corners);
         });
         left_done.store(true, Ordering::Relaxed);
         if let Some(l) = &mut l {
             if !right_job.is_finished() {
-                free_points_for_the_room(&mut l.mesh);
-                l.mesh.prefault_room_while(|| !right_job.is_finished());
+                l.free_for_the_room();
+                l.mesh
+                    .prefault_corner_room_while(|| !right_job.is_finished());
             }
         }
         // A panic in the right half's thread (a bug) is not hidden behind a sequential retry:

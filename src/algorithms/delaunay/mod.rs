@@ -434,13 +434,11 @@ pub struct Ordered {
 }
 
 impl Ordered {
-    /// Where the mesh's corner and twin arrays to be lie: the address range of each one's
-    /// whole capacity (for [`crate::memory::prefault_while`] by another thread).
-    pub fn array_extents(&self) -> [std::ops::Range<usize>; 2] {
-        [&self.corners, &self.twins].map(|v| {
-            let start = v.as_ptr() as usize;
-            start..start + 4 * v.capacity()
-        })
+    /// Where the mesh's corner array to be lies: the address range of its whole capacity (for
+    /// [`crate::memory::prefault_while`] by another thread).
+    pub fn corners_extent(&self) -> std::ops::Range<usize> {
+        let start = self.corners.as_ptr() as usize;
+        start..start + 4 * self.corners.capacity()
     }
 }
 
