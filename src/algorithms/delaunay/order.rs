@@ -14,7 +14,13 @@
 use crate::geometry::Point;
 use std::mem::MaybeUninit;
 
-const HILBERT_BITS: u32 = 16;
+/// Bits per coordinate of the Hilbert curve's grid: 4096² cells, finer than spatial locality
+/// needs at any size this crate meets (10^7 uniform points put fewer than one in a cell; points
+/// sharing a cell keep their input order). Three table steps per key.
+const HILBERT_BITS: u32 = 12;
+
+/// The keys fill the top of 32 bits (the words' buckets take the key's top 8 bits).
+const KEY_SHIFT: u32 = 32 - 2 * HILBERT_BITS;
 
 /// Position of cell `(x, y)` along the Hilbert curve filling a `2^HILBERT_BITS` square grid.
 ///
@@ -110,7 +116,7 @@ fn hilbert_key_of(points: &[Point]) -> impl Fn(Point) -> u32 {
     move |p: Point| {
         let x = ((p[0] - xmin) * scale_x) as u32;
         let y = ((p[1] - ymin) * scale_y) as u32;
-        hilbert_index(x.min(cells as u32), y.min(cells as u32))
+        hilbert_index(x.min(cells as u32), y.min(cells as u32)) << KEY_SHIFT
     }
 }
 
@@ -272,7 +278,7 @@ fn rounds_by_trailing_zeros(growth_bits: u32) -> [u8; 65] {
 /// its index (27): sorting the words sorts by round, then key, then index. One counting pass
 /// scatters them by round and the key's top 8 bits (buckets of a few thousand words at 10^6
 /// points); each bucket is then sorted where it lies in the cache, by radix passes over the
-/// key's low 24 bits (the buckets keep the input order of the words, and the passes are
+/// key's other 16 bits (the buckets keep the input order of the words, and the passes are
 /// stable). Against three radix passes over all the words and a pass by round, this moves the
 /// words through memory once.
 fn rounds_in_hilbert_order(points: &[Point], seed: u64, growth_bits: u32) -> Vec<u32> {
@@ -429,8 +435,9 @@ fn sorted_words<'r, const POINTS: bool>(
     (sorted, sorted_points)
 }
 
-/// Sorts the words of one bucket (their top bits equal, their indices increasing) by the 24
-/// key bits above bit `index_bits`: three stable 8-bit counting passes through `spare` (small
+/// Sorts the words of one bucket (their top bits equal, their indices increasing) by the key
+/// bits below its top 8 (the key's, above bit `index_bits`): stable 8-bit counting passes
+/// through `spare`, two for the 16 bits of [`HILBERT_BITS`] 12 (small
 /// buckets by insertion: the words are distinct, so any sort gives the same order). The
 /// bucket's `points` (one per word, or none at all) move with their words.
 fn sort_bucket(
@@ -469,8 +476,8 @@ fn sort_bucket(
     // The passes go back and forth between the bucket and the spare room; one copy at the end
     // if the words end up in the spare room.
     let mut in_spare = false;
-    for pass in 0..3 {
-        let shift = index_bits + 8 * pass;
+    for pass in 0..(2 * HILBERT_BITS - 8).div_ceil(8) {
+        let shift = index_bits + KEY_SHIFT + 8 * pass;
         let digit = |w: u64| ((w >> shift) & 0xff) as usize;
         let (from, to, from_points, to_points) = if in_spare {
             (&*spare, &mut *words, &*spare_points, &mut *points)
