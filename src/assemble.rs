@@ -54,20 +54,38 @@ pub fn delaunay_outputs(
             .point_markers
             .map_or_else(|| vec![0; n], <[i32]>::to_vec)
     });
-    // Numbered as the caller's points from the first index 0: the corners need no rewriting,
-    // and the ghosts' slots are filled from the end instead of a pass over all triangles.
-    let ghost_ring = (names.is_none() && options.first_index() == 0)
-        .then(|| mesh.ghost_ring())
-        .flatten();
+    // The ghosts found by walking their ring: their slots are filled from the end (work in
+    // proportion to the hull), and the corners then renamed in one straight pass, without a
+    // test per triangle (none at all when they are the caller's numbers from index 0, as after
+    // the two-core merge with `z`).
+    let ghost_ring = mesh.ghost_ring();
     let parts = mesh.into_corners_and_points();
     let (mut corners, mut points) = (parts.corners, Some(parts.points));
     let names = names.map(|(names, caller_points)| {
         drop(points.replace(caller_points));
         names
     });
+    let base = options.first_index();
     let (kept, ghosts) = match (names, ghost_ring) {
-        (Some(names), _) => compact(&mut corners, options, &mut markers, |v| names[v as usize]),
-        (None, Some(ring)) => fill_ghost_slots(&mut corners, ring, &mut markers),
+        (Some(names), Some(ring)) => {
+            let name = |v: u32| names[v as usize];
+            let filled = fill_ghost_slots(&mut corners, ring, &mut markers, name);
+            for c in &mut corners[..filled.0] {
+                *c = name(*c).wrapping_add_signed(base);
+            }
+            filled
+        }
+        (None, Some(ring)) => {
+            let filled = fill_ghost_slots(&mut corners, ring, &mut markers, |v| v);
+            if base != 0 {
+                for c in &mut corners[..filled.0] {
+                    *c = c.wrapping_add_signed(base);
+                }
+            }
+            filled
+        }
+        // No ring (never seen: a safety net): every triangle tested.
+        (Some(names), None) => compact(&mut corners, options, &mut markers, |v| names[v as usize]),
         (None, None) => compact(&mut corners, options, &mut markers, |v| v),
     };
     corners.truncate(kept);
@@ -131,22 +149,24 @@ fn compact(
     (kept, ghosts)
 }
 
-/// [`compact`] for corners kept as they are (the caller's numbers, first index 0) with the
-/// ghosts known (`ring`, from [`Mesh::ghost_ring`]): each ghost's slot below the kept count
-/// takes a real triangle from a slot above it, so the work is proportional to the hull, not
-/// to the mesh (the triangles' order is not Triangle's anyway). Marks the boundary vertices
-/// as `compact` does.
+/// The first part of [`compact`] with the ghosts known (`ring`, from [`Mesh::ghost_ring`]):
+/// each ghost's slot below the kept count takes a real triangle from a slot above it, so the
+/// work is proportional to the hull, not to the mesh (the triangles' order is not Triangle's
+/// anyway); the corners are left as they are. Marks the boundary vertices as `compact` does
+/// (`name`: the caller's number of a vertex). Returns the number of corners kept and the
+/// number of ghosts.
 fn fill_ghost_slots(
     corners: &mut [u32],
     ring: Vec<TriangleId>,
     markers: &mut Option<Vec<i32>>,
+    name: impl Fn(u32) -> u32,
 ) -> (usize, usize) {
     let mut ghosts: Vec<usize> = ring.into_iter().map(TriangleId::index).collect();
     if let Some(markers) = markers.as_mut() {
         for &g in &ghosts {
             for &v in &corners[3 * g..3 * g + 3] {
-                if v != GHOST && markers[v as usize] == 0 {
-                    markers[v as usize] = 1;
+                if v != GHOST && markers[name(v) as usize] == 0 {
+                    markers[name(v) as usize] = 1;
                 }
             }
         }
