@@ -54,10 +54,9 @@ pub fn delaunay_outputs(
             .point_markers
             .map_or_else(|| vec![0; n], <[i32]>::to_vec)
     });
-    // The ghosts found by walking their ring: their slots are filled from the end (work in
-    // proportion to the hull), and the corners then renamed in one straight pass, without a
-    // test per triangle (none at all when they are the caller's numbers from index 0, as after
-    // the two-core merge with `z`).
+    // The ghosts found by walking their ring, the real triangles between them are moved down
+    // run by run: no test per triangle, and the triangles keep their order (that of the
+    // general outputs, so that a scaled input lists the same triangles).
     let ghost_ring = mesh.ghost_ring();
     let parts = mesh.into_corners_and_points();
     let (mut corners, mut points) = (parts.corners, Some(parts.points));
@@ -65,27 +64,13 @@ pub fn delaunay_outputs(
         drop(points.replace(caller_points));
         names
     });
-    let base = options.first_index();
-    let (kept, ghosts) = match (names, ghost_ring) {
-        (Some(names), Some(ring)) => {
-            let name = |v: u32| names[v as usize];
-            let filled = fill_ghost_slots(&mut corners, ring, &mut markers, name);
-            for c in &mut corners[..filled.0] {
-                *c = name(*c).wrapping_add_signed(base);
-            }
-            filled
-        }
-        (None, Some(ring)) => {
-            let filled = fill_ghost_slots(&mut corners, ring, &mut markers, |v| v);
-            if base != 0 {
-                for c in &mut corners[..filled.0] {
-                    *c = c.wrapping_add_signed(base);
-                }
-            }
-            filled
-        }
-        // No ring (never seen: a safety net): every triangle tested.
-        (Some(names), None) => compact(&mut corners, options, &mut markers, |v| names[v as usize]),
+    let between = ghost_ring.and_then(|ring| {
+        compact_between(&mut corners, ring, options, &mut markers, names.as_deref())
+    });
+    // Without one ring (never seen: a safety net), every triangle is tested.
+    let (kept, ghosts) = match (between, names) {
+        (Some(done), _) => done,
+        (None, Some(names)) => compact(&mut corners, options, &mut markers, |v| names[v as usize]),
         (None, None) => compact(&mut corners, options, &mut markers, |v| v),
     };
     corners.truncate(kept);
@@ -149,19 +134,23 @@ fn compact(
     (kept, ghosts)
 }
 
-/// The first part of [`compact`] with the ghosts known (`ring`, from [`Mesh::ghost_ring`]):
-/// each ghost's slot below the kept count takes a real triangle from a slot above it, so the
-/// work is proportional to the hull, not to the mesh (the triangles' order is not Triangle's
-/// anyway); the corners are left as they are. Marks the boundary vertices as `compact` does
-/// (`name`: the caller's number of a vertex). Returns the number of corners kept and the
-/// number of ghosts.
-fn fill_ghost_slots(
+/// [`compact`] with the ghosts known (`ring`, from [`Mesh::ghost_ring`]): the runs of real
+/// triangles between ghost slots are moved down whole (renamed by `names` on the way, or
+/// copied as they are without names and with the first index 0, as after the two-core merge
+/// with `z`), without a test per triangle. The same result as `compact`.
+fn compact_between(
     corners: &mut [u32],
     ring: Vec<TriangleId>,
+    options: &Options,
     markers: &mut Option<Vec<i32>>,
-    name: impl Fn(u32) -> u32,
-) -> (usize, usize) {
+    names: Option<&[u32]>,
+) -> Option<(usize, usize)> {
+    let name = |v: u32| names.map_or(v, |names| names[v as usize]);
     let mut ghosts: Vec<usize> = ring.into_iter().map(TriangleId::index).collect();
+    ghosts.sort_unstable();
+    if ghosts.windows(2).any(|w| w[0] == w[1]) {
+        return None; // not one ring (never seen)
+    }
     if let Some(markers) = markers.as_mut() {
         for &g in &ghosts {
             for &v in &corners[3 * g..3 * g + 3] {
@@ -171,19 +160,31 @@ fn fill_ghost_slots(
             }
         }
     }
-    ghosts.sort_unstable();
-    let count = corners.len() / 3;
-    let kept = count - ghosts.len();
-    let (holes, ghosts_above) = ghosts.split_at(ghosts.partition_point(|&g| g < kept));
-    // The real triangles above `kept`: as many as the ghosts' slots below it.
-    let mut ghosts_above = ghosts_above.iter().peekable();
-    let mut real_above = (kept..count).filter(|&t| ghosts_above.next_if_eq(&&t).is_none());
-    for &hole in holes {
-        if let Some(t) = real_above.next() {
-            corners.copy_within(3 * t..3 * t + 3, 3 * hole);
+    let base = options.first_index();
+    let mut kept = 0;
+    let mut run_start = 0;
+    for end in ghosts.iter().copied().chain([corners.len() / 3]) {
+        let run = 3 * run_start..3 * end;
+        let len = run.len();
+        // Forward, in place: each corner is written `down` slots before the one read.
+        let down = 3 * run_start - kept;
+        match names {
+            Some(names) => {
+                for i in run {
+                    corners[i - down] = names[corners[i] as usize].wrapping_add_signed(base);
+                }
+            }
+            None if base != 0 => {
+                for i in run {
+                    corners[i - down] = corners[i].wrapping_add_signed(base);
+                }
+            }
+            None => corners.copy_within(run, kept),
         }
+        kept += len;
+        run_start = end + 1;
     }
-    (3 * kept, ghosts.len())
+    Some((kept, ghosts.len()))
 }
 
 /// The same array as `i32` values (vertex numbers below 2^31 keep their value), without a pass
