@@ -271,3 +271,30 @@ fn checks_reject_broken_outputs() {
         "a rewired Voronoi edge passed"
     );
 }
+
+/// The plain outputs (points, triangles, markers: no `c`, `e`, `n`, `v`), which are built from
+/// the mesh in place, on every generator at a size that the two-core merge takes (where two
+/// cores are free), with the first index 0 (`z`: the corners copied as they are) and 1.
+#[test]
+fn plain_outputs_of_large_inputs_on_every_generator() {
+    for (name, generate) in points::all_generators() {
+        let points = generate(30_000, 17);
+        for switches in ["Qz", "Q"] {
+            let context = format!("{} {name} points, \"{switches}\"", points.len());
+            let input = MeshInput::from_points(points.clone());
+            let out = ours(switches, &input).unwrap_or_else(|e| panic!("{context}: {e}"));
+            let fail = |e: String| -> ! { panic!("{context}: {e}") };
+            assert_eq!(
+                out.points.as_deref(),
+                Some(&points[..]),
+                "{context}: points"
+            );
+            let triangles = zero_based(&out);
+            check_mesh(&points, &triangles).unwrap_or_else(|e| fail(e));
+            check_delaunay(&points, &triangles).unwrap_or_else(|e| fail(e));
+            if !triangles.is_empty() {
+                check_point_markers(None, &out).unwrap_or_else(|e| fail(e));
+            }
+        }
+    }
+}
