@@ -54,25 +54,26 @@ pub fn delaunay_outputs(
             .point_markers
             .map_or_else(|| vec![0; n], <[i32]>::to_vec)
     });
-    // The ghosts found by walking their ring, the real triangles between them are moved down
-    // run by run: no test per triangle, and the triangles keep their order (that of the
-    // general outputs, so that a scaled input lists the same triangles).
-    let ghost_ring = mesh.ghost_ring();
+    // The ghosts found by walking their ring (a valid mesh with a triangle has one; else by
+    // a scan), the real triangles between them are moved down run by run: no test per
+    // triangle, and the triangles keep their order (that of the general outputs, so that a
+    // scaled input lists the same triangles).
+    let ghosts = mesh
+        .ghost_ring()
+        .unwrap_or_else(|| mesh.triangles().filter(|&t| mesh.is_ghost(t)).collect());
     let parts = mesh.into_corners_and_points();
     let (mut corners, mut points) = (parts.corners, Some(parts.points));
     let names = names.map(|(names, caller_points)| {
         drop(points.replace(caller_points));
         names
     });
-    let between = ghost_ring.and_then(|ring| {
-        compact_between(&mut corners, ring, options, &mut markers, names.as_deref())
-    });
-    // Without one ring (never seen: a safety net), every triangle is tested.
-    let (kept, ghosts) = match (between, names) {
-        (Some(done), _) => done,
-        (None, Some(names)) => compact(&mut corners, options, &mut markers, |v| names[v as usize]),
-        (None, None) => compact(&mut corners, options, &mut markers, |v| v),
-    };
+    let (kept, ghosts) = compact(
+        &mut corners,
+        ghosts,
+        options,
+        &mut markers,
+        names.as_deref(),
+    );
     corners.truncate(kept);
     let triangle_count = kept / 3;
     output.point_count = n;
@@ -100,57 +101,23 @@ pub fn delaunay_outputs(
     (output, voronoi)
 }
 
-/// Compacts the real triangles' corners to the front of `corners` (in place: written at or
-/// before the slot being read), each corner `v` written as `name(v)` plus the first index, and
-/// marks the boundary vertices (the ghosts' finite corners) without an input marker with 1.
-/// Returns the number of corners kept and the number of ghosts.
-#[inline(always)]
+/// Compacts the real triangles' corners to the front of `corners`, the `ghosts` (each once)
+/// left out: the runs of real triangles between ghost slots are moved down whole (in place:
+/// written at or before the slot being read), each corner `v` written as `names[v]` (or `v`
+/// without names) plus the first index — plain copies without names and with the first index
+/// 0, as after the two-core merge with `z` — without a test per triangle. Marks the boundary
+/// vertices (the ghosts' finite corners) without an input marker with 1. Returns the number of
+/// corners kept and the number of ghosts.
 fn compact(
     corners: &mut [u32],
-    options: &Options,
-    markers: &mut Option<Vec<i32>>,
-    name: impl Fn(u32) -> u32,
-) -> (usize, usize) {
-    let (mut kept, mut ghosts) = (0, 0);
-    let base = options.first_index();
-    for t in 0..corners.len() / 3 {
-        let slot = &corners[3 * t..3 * t + 3]; // one bounds check for the three
-        let [a, b, c] = [slot[0], slot[1], slot[2]];
-        if a == GHOST || b == GHOST || c == GHOST {
-            ghosts += 1;
-            if let Some(markers) = markers.as_mut() {
-                for v in [a, b, c] {
-                    if v != GHOST && markers[name(v) as usize] == 0 {
-                        markers[name(v) as usize] = 1;
-                    }
-                }
-            }
-            continue;
-        }
-        corners[kept..kept + 3]
-            .copy_from_slice(&[a, b, c].map(|v| name(v).wrapping_add_signed(base)));
-        kept += 3;
-    }
-    (kept, ghosts)
-}
-
-/// [`compact`] with the ghosts known (`ring`, from [`Mesh::ghost_ring`]): the runs of real
-/// triangles between ghost slots are moved down whole (renamed by `names` on the way, or
-/// copied as they are without names and with the first index 0, as after the two-core merge
-/// with `z`), without a test per triangle. The same result as `compact`.
-fn compact_between(
-    corners: &mut [u32],
-    ring: Vec<TriangleId>,
+    ghosts: Vec<TriangleId>,
     options: &Options,
     markers: &mut Option<Vec<i32>>,
     names: Option<&[u32]>,
-) -> Option<(usize, usize)> {
+) -> (usize, usize) {
     let name = |v: u32| names.map_or(v, |names| names[v as usize]);
-    let mut ghosts: Vec<usize> = ring.into_iter().map(TriangleId::index).collect();
+    let mut ghosts: Vec<usize> = ghosts.into_iter().map(TriangleId::index).collect();
     ghosts.sort_unstable();
-    if ghosts.windows(2).any(|w| w[0] == w[1]) {
-        return None; // not one ring (never seen)
-    }
     if let Some(markers) = markers.as_mut() {
         for &g in &ghosts {
             for &v in &corners[3 * g..3 * g + 3] {
@@ -184,7 +151,7 @@ fn compact_between(
         kept += len;
         run_start = end + 1;
     }
-    Some((kept, ghosts.len()))
+    (kept, ghosts.len())
 }
 
 /// The same array as `i32` values (vertex numbers below 2^31 keep their value), without a pass

@@ -54,32 +54,23 @@ pub(crate) fn with_capacity_on_huge_pages<T>(capacity: usize) -> Vec<T> {
 /// hundred microseconds of work.
 const PREFAULT_CHUNK: usize = 1 << 18;
 
-/// Faults in, for writing, the pages of the address ranges `ranges` (each inside one live
-/// allocation of the caller's, about to be written), a chunk of each in turn while
-/// `keep_going()` says so: work for a thread that would otherwise wait, so that a later copy
-/// into that memory finds its pages in place (a fresh 4 KiB page costs some two microseconds
-/// of kernel time on the project's machine; a copy of 24 MB into fresh pages spends most of its
-/// time there). A hint: where the kernel lacks `MADV_POPULATE_WRITE` (Linux before 5.14, other
-/// systems) nothing happens. The memory's contents never change, so a range whose allocation
-/// is freed meanwhile is harmless too (the call fails, or faults in pages of whatever lies
-/// there now).
-pub(crate) fn prefault_while(ranges: &[std::ops::Range<usize>], keep_going: impl Fn() -> bool) {
+/// Faults in, for writing, the pages of the address range `range` (inside one live allocation
+/// of the caller's, about to be written), a chunk at a time while `keep_going()` says so: work
+/// for a thread that would otherwise wait, so that a later copy into that memory finds its
+/// pages in place (a fresh 4 KiB page costs some two microseconds of kernel time on the
+/// project's machine; a copy of 24 MB into fresh pages spends most of its time there). A hint:
+/// where the kernel lacks `MADV_POPULATE_WRITE` (Linux before 5.14, other systems) nothing
+/// happens. The memory's contents never change, so a range whose allocation is freed meanwhile
+/// is harmless too (the call fails, or faults in pages of whatever lies there now).
+pub(crate) fn prefault_while(range: std::ops::Range<usize>, keep_going: impl Fn() -> bool) {
     const PAGE: usize = 4096;
-    let mut at: Vec<std::ops::Range<usize>> = ranges
-        .iter()
-        .map(|r| r.start.next_multiple_of(PAGE)..r.end / PAGE * PAGE)
-        .collect();
-    while at.iter().any(|r| r.start < r.end) {
-        for r in at.iter_mut().filter(|r| r.start < r.end) {
-            if !keep_going() {
-                return;
-            }
-            let chunk = PREFAULT_CHUNK.min(r.end - r.start);
-            if !populate_for_writing(r.start, chunk) {
-                return;
-            }
-            r.start += chunk;
+    let (mut at, end) = (range.start.next_multiple_of(PAGE), range.end / PAGE * PAGE);
+    while at < end && keep_going() {
+        let chunk = PREFAULT_CHUNK.min(end - at);
+        if !populate_for_writing(at, chunk) {
+            return;
         }
+        at += chunk;
     }
 }
 

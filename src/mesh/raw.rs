@@ -200,16 +200,6 @@ impl Mesh {
         extend_on_two_threads(&mut self.twins, twins, offset);
     }
 
-    /// Faults in the pages of the corner array's room (its capacity beyond the triangles in
-    /// use) while `keep_going()` (see [`crate::memory::prefault_while`]): the merge's first
-    /// half, done before the other, readies the room that the other's triangles are appended
-    /// into instead of waiting.
-    pub fn prefault_corner_room_while(&self, keep_going: impl Fn() -> bool) {
-        let start = self.corners.as_ptr() as usize;
-        let room = start + 4 * self.corners.len()..start + 4 * self.corners.capacity();
-        crate::memory::prefault_while(&[room], keep_going);
-    }
-
     /// The `u32` view of the mesh (see the module docs).
     #[inline(always)]
     pub fn raw(&self) -> RawMesh<'_> {

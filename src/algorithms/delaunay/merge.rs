@@ -82,6 +82,14 @@ fn triangulate_half<P: Predicates>(
     })
 }
 
+/// Faults in the pages of the corner array at `corners` (its address range) beyond its first
+/// `slots` triangle slots (three `u32` corners each) while `keep_going()`: see
+/// [`prefault_while`].
+fn prefault_corners_beyond(corners: &Range<usize>, slots: usize, keep_going: impl Fn() -> bool) {
+    let from = (corners.start + 3 * std::mem::size_of::<u32>() * slots).min(corners.end);
+    prefault_while(from..corners.end, keep_going);
+}
+
 /// A point near the lexicographic median: the median of an evenly spaced sample (the halves
 /// need not be equal, only both large; the result does not depend on the split).
 fn split_point(points: &[Point]) -> Point {
@@ -121,10 +129,10 @@ pub fn triangulate_two_halves<P: Predicates>(
                     // The left half has the other points; its triangle slots (2 per point,
                     // less 2) end before this.
                     let left_points = n - r.mesh.vertex_count() as usize;
-                    let from = 12 * (2 * left_points).saturating_sub(2);
-                    let room = (corners.start + from).min(corners.end)..corners.end;
                     r.free_for_the_room();
-                    prefault_while(&[room], || !left_done.load(Ordering::Relaxed));
+                    prefault_corners_beyond(corners, (2 * left_points).saturating_sub(2), || {
+                        !left_done.load(Ordering::Relaxed)
+                    });
                 }
             }
             r
@@ -133,11 +141,11 @@ pub fn triangulate_two_halves<P: Predicates>(
             let _ = left_corners.set(corners);
         });
         left_done.store(true, Ordering::Relaxed);
-        if let Some(l) = &mut l {
+        if let (Some(l), Some(corners)) = (&mut l, left_corners.get()) {
             if !right_job.is_finished() {
+                let slots = l.mesh.triangle_count() as usize;
                 l.free_for_the_room();
-                l.mesh
-                    .prefault_corner_room_while(|| !right_job.is_finished());
+                prefault_corners_beyond(corners, slots, || !right_job.is_finished());
             }
         }
         // A panic in the right half's thread (a bug) is not hidden behind a sequential retry:

@@ -437,7 +437,7 @@ fn sorted_words<'r, const POINTS: bool>(
 
 /// Sorts the words of one bucket (their top bits equal, their indices increasing) by the key
 /// bits below its top 8 (the key's, above bit `index_bits`): stable 8-bit counting passes
-/// through `spare`, two for the 16 bits of [`HILBERT_BITS`] 12 (small
+/// through `spare`, two for the 16 bits left of a 24-bit key ([`HILBERT_BITS`]) (small
 /// buckets by insertion: the words are distinct, so any sort gives the same order). The
 /// bucket's `points` (one per word, or none at all) move with their words.
 fn sort_bucket(
