@@ -93,10 +93,36 @@ fn main() {
         holes: &holes,
         ..Input::default()
     };
+    // With `PHASES` set, each phase's start and end is printed, in milliseconds from the call's
+    // start (the progress reports at the start and end of each phase).
+    let phases = std::env::var_os("PHASES").is_some();
+    // With `MMAP` set, large blocks come from mmap and are given back when freed, as in the
+    // benchmarks (`large_blocks_from_mmap`): each run then pays for touching fresh pages.
+    let fresh_memory = std::env::var_os("MMAP").is_some();
+    if fresh_memory {
+        // SAFETY: a valid mallopt parameter and value.
+        unsafe { libc::mallopt(libc::M_MMAP_THRESHOLD, 128 * 1024) };
+    }
     for _ in 0..reps {
+        if fresh_memory {
+            // SAFETY: no arguments to check; gives free heap memory back to the system.
+            unsafe { libc::malloc_trim(0) };
+        }
         let (start, cpu) = (Instant::now(), cpu_seconds());
-        let (output, _) =
-            triangle_rs::triangulate(&options, &input, &Hooks::default()).expect("triangulate");
+        let report = |progress: triangle_rs::Progress| {
+            if progress.done == 0 || progress.done == progress.estimate {
+                let at = start.elapsed().as_secs_f64() * 1e3;
+                eprint!("{:?} {} at {at:.1} ms; ", progress.phase, progress.done);
+            }
+        };
+        let hooks = Hooks {
+            progress: phases.then_some(&report as &(dyn Fn(triangle_rs::Progress) + Sync)),
+            ..Hooks::default()
+        };
+        let (output, _) = triangle_rs::triangulate(&options, &input, &hooks).expect("triangulate");
+        if phases {
+            eprintln!();
+        }
         println!(
             "{mode} n={n} \"{switches}\": wall {:.3} s, cpu {:.3} s, {} triangles",
             start.elapsed().as_secs_f64(),

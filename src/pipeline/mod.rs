@@ -1,9 +1,6 @@
 //! The driver: checks the input, runs the algorithms that the options ask for and assembles the
 //! [`Output`] and [`VoronoiOutput`].
 
-use std::collections::HashMap;
-use std::hash::{BuildHasherDefault, Hasher};
-
 use crate::algorithms::constrain::Constrainer;
 use crate::algorithms::delaunay::{self, merge, order, InInsertionOrder, Inserter, Triangulation};
 use crate::algorithms::domain::{carve, Domain};
@@ -379,23 +376,24 @@ fn insert_segments<P: Predicates>(
 ) -> Result<(), Error> {
     let m = (input.segments.len() / 2) as u64;
     hooks.report(Phase::Segments, 0, m);
-    let mut inserted: HashMap<u64, u32, BuildHasherDefault<PairHasher>> =
-        HashMap::with_capacity_and_hasher(m as usize, Default::default());
-    let key = |a: u32, b: u32| (u64::from(a.min(b)) << 32) | u64::from(a.max(b));
-    for (i, s) in input.segments.chunks_exact(2).enumerate() {
-        let marker = input.segment_markers.map_or(0, |m| m[i]);
-        // In range: `check_indices_and_seeds` refused the input otherwise.
-        let ends = [s[0] - base, s[1] - base];
-        // A duplicate vertex is not in the triangulation: use the copy that is.
-        let [a, b] = ends.map(|v| {
-            let v = v as u32;
+    // A duplicate vertex is not in the triangulation: use the copy that is. In range:
+    // `check_indices_and_seeds` refused the input otherwise.
+    let ends = |i: usize| {
+        [input.segments[2 * i], input.segments[2 * i + 1]].map(|v| {
+            let v = (v - base) as u32;
             if duplicate_of[v as usize] == NONE {
                 v
             } else {
                 duplicate_of[v as usize]
             }
-        });
+        })
+    };
+    let mut copy_of = first_copies(m as usize, duplicate_of.len(), ends);
+    for i in 0..m as usize {
+        let marker = input.segment_markers.map_or(0, |m| m[i]);
+        let [a, b] = ends(i);
         if a == b {
+            let s = &input.segments[2 * i..2 * i + 2];
             warnings.push(format!(
                 "Endpoints of segment {} are coincident ({} {}); the segment was skipped.",
                 i as i32 + base,
@@ -404,14 +402,16 @@ fn insert_segments<P: Predicates>(
             ));
             continue;
         }
-        if let Some(&id) = inserted.get(&key(a, b)) {
+        if copy_of[i] != NONE {
+            // The first copy was inserted before this one: its id is in its entry.
+            let id = copy_of[(copy_of[i] & !COPY) as usize];
             if cdt.markers[id as usize] == 0 {
                 cdt.markers[id as usize] = marker;
             }
             continue;
         }
         let id = cdt.new_segment_id(marker, VertexId::new(a), VertexId::new(b));
-        inserted.insert(key(a, b), id);
+        copy_of[i] = id;
         cdt.insert_segment(VertexId::new(a), VertexId::new(b), id)?;
         if i % 4096 == 4095 {
             hooks.report(Phase::Segments, i as u64 + 1, m);
@@ -421,26 +421,69 @@ fn insert_segments<P: Predicates>(
     Ok(())
 }
 
-/// The hash of a vertex pair packed in one `u64` (Fibonacci hashing: one multiplication, the
-/// high bits well mixed): the segment table needs no protection against chosen collisions, and
-/// SipHash cost 4% of a constrained triangulation of 10^5 segments.
-#[derive(Default)]
-struct PairHasher(u64);
+/// The mark of a later copy in [`first_copies`]' answer.
+const COPY: u32 = 1 << 31;
 
-impl Hasher for PairHasher {
-    fn finish(&self) -> u64 {
-        self.0
+/// Per segment `i` of `count` (ends `ends(i)`, vertices below `vertex_count`): `COPY | j` when
+/// an earlier segment `j` joins the same two vertices (either way round; `j` the first such),
+/// else `NONE` (which the caller overwrites with a first copy's segment id once inserted). Found by bucketing the segments by their smaller end (a counting sort: two
+/// passes over the segments, a few bytes per vertex and segment, where a hash table of the
+/// pairs cost 2% of a constrained triangulation of 10^5 segments in its inserts and page
+/// faults); the segments of one bucket are in input order, compared pairwise, or sorted by
+/// their other end when a vertex has many.
+fn first_copies(count: usize, vertex_count: usize, ends: impl Fn(usize) -> [u32; 2]) -> Vec<u32> {
+    /// Above this many segments at one vertex, its bucket is sorted rather than compared
+    /// pairwise.
+    const PAIRWISE: usize = 16;
+    let mut copy_of = vec![NONE; count];
+    if count < 2 || count > COPY as usize {
+        return copy_of;
     }
-    fn write(&mut self, bytes: &[u8]) {
-        for &byte in bytes {
-            self.write_u64(u64::from(byte));
+    let smaller = |i: usize| {
+        let [a, b] = ends(i);
+        a.min(b) as usize
+    };
+    let mut start = vec![0u32; vertex_count + 1];
+    for i in 0..count {
+        start[smaller(i) + 1] += 1;
+    }
+    for v in 0..vertex_count {
+        start[v + 1] += start[v];
+    }
+    // Filled bucket by bucket in input order; `start[v]` advances to the end of bucket `v`,
+    // which is where bucket `v + 1` starts.
+    let mut by_vertex = vec![0u32; count];
+    for i in 0..count {
+        let slot = &mut start[smaller(i)];
+        by_vertex[*slot as usize] = i as u32;
+        *slot += 1;
+    }
+    let larger = |i: u32| {
+        let [a, b] = ends(i as usize);
+        a.max(b)
+    };
+    let mut bucket_start = 0;
+    for v in 0..vertex_count {
+        let bucket = &mut by_vertex[bucket_start..start[v] as usize];
+        bucket_start = start[v] as usize;
+        if bucket.len() <= PAIRWISE {
+            for (k, &i) in bucket.iter().enumerate() {
+                if let Some(&j) = bucket[..k].iter().find(|&&j| larger(j) == larger(i)) {
+                    // `j` is the first earlier one with these ends: it is no copy itself.
+                    copy_of[i as usize] = COPY | j;
+                }
+            }
+        } else {
+            bucket.sort_unstable_by_key(|&i| (larger(i), i));
+            for pair in bucket.windows(2) {
+                if larger(pair[0]) == larger(pair[1]) {
+                    let first = copy_of[pair[0] as usize];
+                    copy_of[pair[1] as usize] = if first == NONE { COPY | pair[0] } else { first };
+                }
+            }
         }
     }
-    fn write_u64(&mut self, value: u64) {
-        self.0 = (self.0 ^ value)
-            .wrapping_mul(0x9E37_79B9_7F4A_7C15)
-            .rotate_left(32);
-    }
+    copy_of
 }
 
 fn write_outputs(
@@ -612,6 +655,31 @@ fn unscale_outputs(
 mod tests {
     use super::*;
     use crate::options::SwitchSource;
+
+    /// `first_copies` against the quadratic definition, on random segments over few vertices
+    /// (many copies, both ways round, and buckets above the pairwise limit).
+    #[test]
+    fn first_copies_are_the_first_earlier_segments_with_the_same_ends() {
+        let mut state = 5u64;
+        for (count, vertices) in [(0, 1), (1, 2), (40, 6), (300, 12), (3000, 40), (500, 3)] {
+            let segments: Vec<[u32; 2]> = (0..count)
+                .map(|_| [0, 1].map(|_| (order::splitmix64(&mut state) % vertices as u64) as u32))
+                .collect();
+            let same = |s: [u32; 2], t: [u32; 2]| s == t || s == [t[1], t[0]];
+            let expected: Vec<u32> = (0..count)
+                .map(|i| {
+                    (0..i)
+                        .find(|&j| same(segments[j], segments[i]))
+                        .map_or(NONE, |j| COPY | j as u32)
+                })
+                .collect();
+            assert_eq!(
+                first_copies(count, vertices, |i| segments[i]),
+                expected,
+                "{count} segments over {vertices} vertices"
+            );
+        }
+    }
 
     /// The plain outputs (renamed from insertion order as they are written) are the general
     /// path's: triangles, hull markers, counts and duplicate warnings, with copies of points
