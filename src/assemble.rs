@@ -168,6 +168,10 @@ fn into_i32(values: Vec<u32>) -> Vec<i32> {
 /// A finished mesh with the per-vertex and per-edge facts the outputs need.
 pub struct FinishedMesh<'a> {
     pub mesh: &'a Mesh,
+    /// The caller moves the mesh's points in as the output points after the other outputs
+    /// ([`Mesh::take_points`]): [`Self::write`] leaves them out. Only without jettisoned
+    /// vertices (every vertex keeps its index).
+    pub points_moved_in_later: bool,
     /// `point_attribute_count` values per vertex.
     pub point_attributes: &'a [f64],
     pub point_attribute_count: usize,
@@ -262,8 +266,12 @@ impl<'a> FinishedMesh<'a> {
         } else {
             Vec::new()
         };
-        let mut boundary_edges = Vec::new();
-        let mut segment_edges = Vec::new();
+        // Room for one edge per segment id: with segments, the boundary is made of them, and
+        // pieces outnumber them only where segments were split (growing from empty would copy
+        // and fault in fresh pages at every doubling).
+        let segment_ids = self.segment_markers.map_or(0, <[i32]>::len);
+        let mut boundary_edges = Vec::with_capacity(segment_ids);
+        let mut segment_edges = Vec::with_capacity(segment_ids);
         let mut edge_count = 0;
         let segments = self.mesh.raw_segments();
         let (twins, in_mesh) = (self.mesh.raw_twins(), self.triangle_in_mesh);
@@ -425,13 +433,16 @@ impl<'a> FinishedMesh<'a> {
         output.point_count = numbering.vertex_count;
         output.point_attribute_count = self.point_attribute_count;
         if !options.output.no_node_output {
-            output.points = Some(match &numbering.vertex {
-                None => self.mesh.points().as_flattened().to_vec(),
-                Some(_) => (0..n)
-                    .filter(kept)
-                    .flat_map(|v| self.mesh.points()[v])
-                    .collect(),
-            });
+            output.points = match &numbering.vertex {
+                None if self.points_moved_in_later => None,
+                None => Some(self.mesh.points().as_flattened().to_vec()),
+                Some(_) => Some(
+                    (0..n)
+                        .filter(kept)
+                        .flat_map(|v| self.mesh.points()[v])
+                        .collect(),
+                ),
+            };
             if self.point_attribute_count > 0 {
                 let k = self.point_attribute_count;
                 output.point_attributes = Some(
@@ -444,7 +455,10 @@ impl<'a> FinishedMesh<'a> {
             }
             if markers {
                 let all = self.vertex_markers(numbering);
-                output.point_markers = Some((0..n).filter(kept).map(|v| all[v]).collect());
+                output.point_markers = Some(match &numbering.vertex {
+                    None => all,
+                    Some(_) => (0..n).filter(kept).map(|v| all[v]).collect(),
+                });
             }
         }
 

@@ -364,6 +364,12 @@ impl Mesh {
 
     /// Consumes the mesh for its corner array and points (the twins and the tracking are freed
     /// first, so that the caller can build outputs in place without the mesh's peak memory).
+    /// Takes the points out, leaving none: for a mesh whose points become an output and which
+    /// is read no further (every other operation needs the points).
+    pub fn take_points(&mut self) -> Vec<Point> {
+        std::mem::take(&mut self.points)
+    }
+
     pub fn into_corners_and_points(self) -> MeshParts {
         let Mesh {
             points,

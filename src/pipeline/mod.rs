@@ -349,7 +349,7 @@ fn run<P: Predicates>(
     }
     let slots = meshed.mesh.triangle_count();
     output_phase(hooks, slots, || {
-        write_outputs(options, input, &meshed, output, scaling)
+        write_outputs(options, input, meshed, output, scaling)
     })
 }
 
@@ -489,7 +489,7 @@ fn first_copies(count: usize, vertex_count: usize, ends: impl Fn(usize) -> [u32;
 fn write_outputs(
     options: &Options,
     input: &Input<'_>,
-    meshed: &Meshed,
+    mut meshed: Meshed,
     mut output: Output,
     scaling: Scaling,
 ) -> Result<(Output, VoronoiOutput), Error> {
@@ -539,8 +539,16 @@ fn write_outputs(
             vertex_in_mesh = mid_node_only.iter().map(|&mid| !mid).collect();
         }
     }
+    // The output points are the mesh's own, moved out once nothing reads them any more (a copy
+    // would touch as many fresh pages again), unless some are left out, scaled back or followed
+    // by `o2`'s mid-edge nodes.
+    let move_points = scaling.is_identity()
+        && !options.output.no_node_output
+        && !jettison
+        && !options.second_order;
     let finished = FinishedMesh {
         mesh,
+        points_moved_in_later: move_points,
         point_attributes: &meshed.point_attributes,
         point_attribute_count: input.point_attribute_count,
         input_point_markers: &meshed.point_markers,
@@ -596,6 +604,9 @@ fn write_outputs(
             &mut output,
             &mut voronoi,
         )?;
+    }
+    if move_points {
+        output.points = Some(meshed.mesh.take_points().into_flattened());
     }
     Ok((output, voronoi))
 }
