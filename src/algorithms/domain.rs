@@ -5,6 +5,8 @@
 //! from each hole point, and the infection spreads to neighbours across every edge that is not a
 //! segment. Regions spread the same way from their points.
 
+use std::collections::VecDeque;
+
 use crate::algorithms::constrain::Constrainer;
 use crate::geometry::{Point, Predicates};
 use crate::mesh::{Mesh, TriangleId, GHOST, OUTSIDE};
@@ -77,21 +79,67 @@ impl Domain {
     }
 }
 
-/// Visits every triangle reachable from `seeds` across non-segment edges: `try_visit(t)` visits
-/// `t` if it may be entered and was not visited yet, and says whether it did.
-fn flood(mesh: &Mesh, seeds: Vec<TriangleId>, mut try_visit: impl FnMut(TriangleId) -> bool) {
-    let mut stack: Vec<TriangleId> = seeds.into_iter().filter(|&t| try_visit(t)).collect();
-    while let Some(t) = stack.pop() {
+/// Gives tag `tag` to every triangle reachable from `seeds` across non-segment edges whose tag
+/// is not `tag` already and `may_enter` its tag.
+///
+/// Breadth first, with what a visit reads fetched into the cache ahead of it (every access here
+/// is to a scattered triangle, a cache miss each, which depth first cost 4 ms of a
+/// 10^5-vertex polygon's carving): a triangle's twins and segment ids when it is queued, the
+/// tags of its neighbours when it comes within `LOOKAHEAD` of the queue's front.
+fn flood(
+    mesh: &Mesh,
+    seeds: Vec<TriangleId>,
+    tags: &mut [u32],
+    tag: u32,
+    may_enter: impl Fn(u32) -> bool,
+) {
+    const LOOKAHEAD: usize = 8;
+    let enter = |t: TriangleId, tags: &mut [u32]| {
+        let old = tags[t.index()];
+        let enters = old != tag && may_enter(old);
+        if enters {
+            tags[t.index()] = tag;
+        }
+        enters
+    };
+    let mut queue: VecDeque<TriangleId> = VecDeque::new();
+    for t in seeds {
+        if enter(t, tags) {
+            queue.push_back(t);
+        }
+    }
+    while let Some(t) = queue.pop_front() {
+        if let Some(&ahead) = queue.get(LOOKAHEAD) {
+            for e in ahead.edges() {
+                let u = mesh.twin(e).triangle();
+                if let Some(slot) = tags.get(u.index()) {
+                    prefetch(slot);
+                }
+            }
+        }
         for e in t.edges() {
             if mesh.is_segment(e) {
                 continue;
             }
             let u = mesh.twin(e).triangle();
-            if try_visit(u) {
-                stack.push(u);
+            if enter(u, tags) {
+                mesh.prefetch_adjacency(u);
+                queue.push_back(u);
             }
         }
     }
+}
+
+/// Asks the processor to bring `value` into the cache (no effect on the program).
+#[inline(always)]
+fn prefetch(value: &u32) {
+    #[cfg(target_arch = "x86_64")]
+    // SAFETY: a prefetch of a valid reference's address reads nothing into the program.
+    unsafe {
+        std::arch::x86_64::_mm_prefetch::<{ std::arch::x86_64::_MM_HINT_T0 }>(
+            (value as *const u32).cast(),
+        )
+    };
 }
 
 /// Carves the domain out of a constrained triangulation: sets the triangle tags.
@@ -128,9 +176,7 @@ pub fn carve<P: Predicates>(
         }
     }
     let mut tag = cdt.mesh_mut().take_tags();
-    flood(cdt.mesh(), seeds, |t| {
-        std::mem::replace(&mut tag[t.index()], OUTSIDE) != OUTSIDE
-    });
+    flood(cdt.mesh(), seeds, &mut tag, OUTSIDE, |_| true);
 
     let mut domain = domain;
     domain.attribute_count = 1;
@@ -143,12 +189,8 @@ pub fn carve<P: Predicates>(
         let Some(t) = cdt.triangle_at(point) else {
             continue;
         };
-        flood(cdt.mesh(), vec![t], |u| {
-            let enter = tag[u.index()] != OUTSIDE && tag[u.index()] != region_tag;
-            if enter {
-                tag[u.index()] = region_tag;
-            }
-            enter
+        flood(cdt.mesh(), vec![t], &mut tag, region_tag, |old| {
+            old != OUTSIDE
         });
     }
     cdt.mesh_mut().set_tags(tag);
