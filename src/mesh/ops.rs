@@ -422,26 +422,34 @@ impl Mesh {
         }
     }
 
-    /// [`Self::link_to_outer`] for each pair `(inner[i], outer[i])` whose `outer[i]` is not
-    /// [`EdgeId::NONE`], without bounds checks.
+    /// Joins each `inner[i]` to `outer[i]` (unless that is [`EdgeId::NONE`]) as
+    /// [`Self::link_to_outer`] does, `inner[i]` taking segment id `segments[i]` (where tracked):
+    /// the caller read it before the rewrite from the old half-edge across from `outer[i]`,
+    /// which holds the same id and lies in a triangle it had just read, where `outer[i]`'s
+    /// entry would be a cache miss each. Without bounds checks.
     ///
     /// # Safety
     /// Every `inner[i]` whose `outer[i]` is not [`EdgeId::NONE`] is a half-edge of the mesh,
-    /// and so is every `outer[i]` other than [`EdgeId::NONE`].
-    pub unsafe fn link_all_to_outer_unchecked(&mut self, inner: &[EdgeId], outer: &[EdgeId]) {
+    /// and so is every `outer[i]` other than [`EdgeId::NONE`]; `segments` is as long as `outer`.
+    pub unsafe fn link_all_to_outer_unchecked(
+        &mut self,
+        inner: &[EdgeId],
+        outer: &[EdgeId],
+        segments: &[u32],
+    ) {
         let tracks_segments = !self.segment.is_empty();
         // The length the contract's half-edges are measured against (checked once).
         assert!(!tracks_segments || self.segment.len() == self.corners.len());
-        for (&inner, &outer) in inner.iter().zip(outer) {
+        for ((&inner, &outer), &segment) in inner.iter().zip(outer).zip(segments) {
             if outer != EdgeId::NONE {
                 debug_assert!(inner.index().max(outer.index()) < self.corners.len());
+                debug_assert_eq!(segment, self.segment_of(outer));
                 // SAFETY: both are half-edges of the mesh (the contract): below the length of
                 // `twins`, and of `segment` where tracked (asserted above).
                 unsafe {
                     self.link_unchecked(inner, outer);
                     if tracks_segments {
-                        *self.segment.get_unchecked_mut(inner.index()) =
-                            *self.segment.get_unchecked(outer.index());
+                        *self.segment.get_unchecked_mut(inner.index()) = segment;
                     }
                 }
             }

@@ -30,6 +30,8 @@ struct Chain {
     points: Vec<Point>,
     outer: Vec<EdgeId>,
     inner: Vec<EdgeId>,
+    /// Per chain edge: its segment id (or NONE), read from the cavity's side before the rewrite.
+    segments: Vec<u32>,
 }
 
 impl Chain {
@@ -41,6 +43,7 @@ impl Chain {
             self.points.resize(len, [0.0; 2]);
             self.outer.resize(len, EdgeId::NONE);
             self.inner.resize(len, EdgeId::NONE);
+            self.segments.resize(len, NONE);
         }
     }
 
@@ -124,10 +127,12 @@ impl<P: Predicates> Constrainer<P> {
         left.set(0, a, pa);
         left.set(1, l1, mesh.point(l1));
         left.outer[0] = mesh.twin(h1.next()); // a → l1
-                                              // The right chain from the back: a at k + 1, r1 before it.
+        left.segments[0] = mesh.segment_of(h1.next());
+        // The right chain from the back: a at k + 1, r1 before it.
         right.set(k + 1, a, pa);
         right.set(k, r1, mesh.point(r1));
         right.outer[k] = mesh.twin(h1.prev()); // r1 → a
+        right.segments[k] = mesh.segment_of(h1.prev());
         let (mut left_len, mut right_start) = (2, k);
         // The triangles beyond the crossed edges, as the walk recorded them (`Beyond`): each adds
         // its apex to one chain, the last one (apex b) to both.
@@ -153,6 +158,7 @@ impl<P: Predicates> Constrainer<P> {
                     *left.points.get_unchecked_mut(left_len) = pz;
                     // left → z
                     *left.outer.get_unchecked_mut(left_len - 1) = mesh.twin_unchecked(to_left);
+                    *left.segments.get_unchecked_mut(left_len - 1) = mesh.segment_of(to_left);
                 }
                 left_len += 1;
             }
@@ -167,6 +173,7 @@ impl<P: Predicates> Constrainer<P> {
                     *right.points.get_unchecked_mut(right_start) = pz;
                     // z → right
                     *right.outer.get_unchecked_mut(right_start) = mesh.twin_unchecked(to_right);
+                    *right.segments.get_unchecked_mut(right_start) = mesh.segment_of(to_right);
                 }
             }
         }
@@ -266,7 +273,11 @@ impl<P: Predicates> Constrainer<P> {
             // SAFETY: the plan wrote every chain edge's inner half-edge, one of a slot; each
             // outer one is NONE or a twin read from the mesh (a half-edge of it).
             unsafe {
-                mesh.link_all_to_outer_unchecked(&chain.inner[edges.clone()], &chain.outer[edges])
+                mesh.link_all_to_outer_unchecked(
+                    &chain.inner[edges.clone()],
+                    &chain.outer[edges.clone()],
+                    &chain.segments[edges],
+                )
             };
         }
         for pair in inner_links.chunks_exact(2) {
