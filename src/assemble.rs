@@ -6,6 +6,7 @@
 //! marker of a non-zero segment it lies on, else 1 on a boundary, else 0; a segment or edge gets its
 //! segment's marker, else 1 on a boundary, else 0.
 
+use crate::algorithms::constrain::LaterCopy;
 use crate::data::{Input, Output, VoronoiOutput};
 use crate::geometry::Point;
 use crate::mesh::raw::{triangle_of, RawMesh, GHOST};
@@ -186,6 +187,8 @@ pub struct FinishedMesh<'a> {
     pub triangle_in_mesh: &'a [bool],
     /// The marker of each segment id of [`Mesh::segment`]; `None` when no segments are tracked.
     pub segment_markers: Option<&'a [i32]>,
+    /// The later copies of segments that gave them their markers, in input order.
+    pub later_copies: &'a [LaterCopy],
     /// Whether segments take part (Triangle's `usesegments`); without them `numberofsegments`
     /// counts the boundary (hull) edges, although no list is written.
     pub uses_segments: bool,
@@ -321,20 +324,33 @@ impl<'a> FinishedMesh<'a> {
     }
 
     /// Final vertex markers: the input marker; else, as Triangle assigns them while inserting
-    /// segments, the non-zero marker of the first segment (in input order) that the vertex is an
-    /// endpoint of a piece of; else 1 on the boundary of the mesh; else 0. (A duplicate left out
+    /// segments, the first non-zero marker (in input order) of a segment that the vertex is an
+    /// endpoint of a piece of, where a segment given again counts with its own marker at its own
+    /// place ([`LaterCopy`]); else 1 on the boundary of the mesh; else 0. (A duplicate left out
     /// of the mesh keeps its input marker, as in Triangle.)
     fn vertex_markers(&self, numbering: &Numbering) -> Vec<i32> {
         let n = self.mesh.vertex_count() as usize;
-        let mut first_segment = vec![NONE; n];
+        // Per vertex, the place in input order of the first segment that marks it (see
+        // `LaterCopy::order`; u64::MAX: none).
+        let mut first = vec![u64::MAX; n];
         // On the boundary: an edge of the mesh with the outside on one side, or (as Triangle marks
-        // them before eating triangles) a piece of a segment on the convex hull.
+        // them before eating triangles) a piece of a segment on the convex hull. (Where both sides
+        // of a segment are eaten, Triangle marks its ends or not by the order it eats them in.)
         let mut on_boundary = vec![false; n];
         for &e in &numbering.boundary_edges {
             on_boundary[self.m().origin(e) as usize] = true;
             on_boundary[self.m().dest(e) as usize] = true;
         }
-        if let Some(markers) = self.segment_markers {
+        let markers = self.segment_markers.unwrap_or(&[]);
+        // Per segment id, 1 + the index of its later copy (0: none); only when there are any.
+        let mut copy_of_id = Vec::new();
+        if !self.later_copies.is_empty() {
+            copy_of_id = vec![0u32; markers.len()];
+            for (k, copy) in self.later_copies.iter().enumerate() {
+                copy_of_id[copy.id as usize] = k as u32 + 1;
+            }
+        }
+        if self.segment_markers.is_some() {
             // One pass over the segment ids; only half-edges on segments are looked at further.
             for (e, &id) in self.mesh.raw_segments().iter().enumerate() {
                 if id == NONE {
@@ -342,8 +358,14 @@ impl<'a> FinishedMesh<'a> {
                 }
                 let e = e as u32;
                 let (a, b) = (self.m().origin(e), self.m().dest(e));
-                if markers[id as usize] != 0 && a != GHOST && id < first_segment[a as usize] {
-                    first_segment[a as usize] = id;
+                // The segment's own place, or (its given marker was 0) its later copy's.
+                let order = match copy_of_id.get(id as usize) {
+                    Some(&k) if k != 0 => self.later_copies[k as usize - 1].order,
+                    _ if markers[id as usize] != 0 => u64::from(id) << 32,
+                    _ => u64::MAX,
+                };
+                if a != GHOST && order < first[a as usize] {
+                    first[a as usize] = order;
                 }
                 if a != GHOST && b != GHOST && self.m().apex(e) == GHOST {
                     on_boundary[a as usize] = true;
@@ -354,11 +376,14 @@ impl<'a> FinishedMesh<'a> {
         (0..n)
             .map(|v| {
                 let input = self.input_point_markers[v];
+                let order = first[v];
                 if input != 0 {
                     input
-                } else if first_segment[v] != NONE {
-                    self.segment_markers
-                        .map_or(0, |m| m[first_segment[v] as usize])
+                } else if order != u64::MAX {
+                    match order as u32 {
+                        0 => markers[(order >> 32) as usize],
+                        k => self.later_copies[k as usize - 1].marker,
+                    }
                 } else {
                     i32::from(on_boundary[v] || self.all_collinear)
                 }

@@ -222,6 +222,75 @@ fn region_switch_without_regions_adds_a_zero_attribute() {
     }
 }
 
+/// A segment given again, with a non-zero marker where the first copy had 0, marks the vertices
+/// at its own place in input order: a vertex that a segment given in between marked keeps that
+/// marker (Triangle marks vertices while inserting segments in input order, and a copy walks the
+/// first copy's pieces). Random edges of a triangulation (so no crossings), many given twice in
+/// either direction, random markers, against Triangle: `c` keeps every triangle (where Triangle
+/// eats triangles, whether it marks the ends of a segment eaten on both sides depends on the
+/// order it eats them in).
+#[test]
+fn later_copies_of_segments_mark_vertices_in_input_order() {
+    let Some(triangle) = reference() else { return };
+    let mut rng = common::rng::SplitMix64::new(0x5EED_C0B1);
+    for case in 0..60 {
+        let n = 4 + rng.below(36);
+        // On a coarse grid: cocircular points too (which triangulation the edges come from does
+        // not matter, only that they do not cross).
+        let points: Vec<[f64; 2]> = (0..n)
+            .map(|_| {
+                [
+                    rng.below(1000) as f64 / 1000.0,
+                    rng.below(1000) as f64 / 1000.0,
+                ]
+            })
+            .collect();
+        let input = MeshInput::from_points(points.clone());
+        let triangulation = ours("zQ", &input).unwrap();
+        let mut edges: Vec<[i32; 2]> = triangulation
+            .triangles
+            .unwrap()
+            .chunks_exact(3)
+            .flat_map(|t| [[t[0], t[1]], [t[1], t[2]], [t[2], t[0]]])
+            .map(|[a, b]| [a.min(b), a.max(b)])
+            .collect();
+        edges.sort_unstable();
+        edges.dedup();
+        let mut segments = Vec::new();
+        for _ in 0..1 + rng.below(edges.len()) {
+            let [a, b] = edges[rng.below(edges.len())];
+            for _ in 0..1 + usize::from(rng.below(5) < 2) {
+                segments.push(if rng.below(2) == 0 {
+                    [a + 1, b + 1]
+                } else {
+                    [b + 1, a + 1]
+                });
+            }
+        }
+        for i in (1..segments.len()).rev() {
+            segments.swap(i, rng.below(i + 1));
+        }
+        let markers = (0..segments.len())
+            .map(|_| [0, 0, 3, 5, 9][rng.below(5)])
+            .collect();
+        let input = MeshInput {
+            segments,
+            segment_markers: Some(markers),
+            ..MeshInput::from_points(points)
+        };
+        for switches in ["pcQ", "pceQ"] {
+            let theirs = triangle.triangulate(switches, &input);
+            let ours = ours(switches, &input).unwrap();
+            let diffs = pslg_differences(&input, &ours, &theirs);
+            assert!(
+                diffs.is_empty(),
+                "case {case}, \"{switches}\": ours differs from Triangle's:\n  {}",
+                diffs.join("\n  ")
+            );
+        }
+    }
+}
+
 /// When several input segments cover the same edge (a segment repeated, or collinear segments
 /// overlapping), Triangle gives the edge the first non-zero marker among them (a later segment's
 /// marker replaces a 0), and the vertices on it get that marker too; so do we.

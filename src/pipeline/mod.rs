@@ -1,7 +1,7 @@
 //! The driver: checks the input, runs the algorithms that the options ask for and assembles the
 //! [`Output`] and [`VoronoiOutput`].
 
-use crate::algorithms::constrain::Constrainer;
+use crate::algorithms::constrain::{Constrainer, LaterCopy};
 use crate::algorithms::delaunay::{self, merge, order, InInsertionOrder, Inserter, Triangulation};
 use crate::algorithms::domain::{carve, Domain};
 use crate::algorithms::reconstruct::reconstruct;
@@ -165,6 +165,8 @@ struct Meshed {
     point_markers: Vec<i32>,
     /// Per segment id (input segments, then the hull segments of `c`).
     segment_markers: Vec<i32>,
+    /// Later copies of segments that gave them their markers (see [`LaterCopy`]).
+    later_copies: Vec<LaterCopy>,
     domain: Domain,
     uses_segments: bool,
 }
@@ -227,6 +229,7 @@ fn run<P: Predicates>(
             .point_markers
             .map_or_else(|| vec![0; n], <[i32]>::to_vec),
         segment_markers: Vec::new(),
+        later_copies: Vec::new(),
         domain: Domain::default(),
         uses_segments: options.uses_segments(),
         mesh,
@@ -331,6 +334,7 @@ fn run<P: Predicates>(
                 .extend(report.warnings.iter().map(ToString::to_string));
         }
         meshed.segment_markers = std::mem::take(&mut cdt.markers);
+        meshed.later_copies = std::mem::take(&mut cdt.later_copies);
         meshed.mesh = cdt.into_mesh();
         // New vertices (crossings, Steiner points) have no input marker.
         meshed
@@ -405,8 +409,11 @@ fn insert_segments<P: Predicates>(
         if copy_of[i] != NONE {
             // The first copy was inserted before this one: its id is in its entry.
             let id = copy_of[(copy_of[i] & !COPY) as usize];
-            if cdt.markers[id as usize] == 0 {
+            if cdt.markers[id as usize] == 0 && marker != 0 {
                 cdt.markers[id as usize] = marker;
+                let order =
+                    (((cdt.markers.len() - 1) as u64) << 32) | (cdt.later_copies.len() as u64 + 1);
+                cdt.later_copies.push(LaterCopy { id, order, marker });
             }
             continue;
         }
@@ -558,6 +565,7 @@ fn write_outputs(
         segment_markers: mesh
             .tracks_segments()
             .then_some(&meshed.segment_markers[..]),
+        later_copies: &meshed.later_copies,
         uses_segments: meshed.uses_segments,
     };
     let numbering = finished.numbering(options, jettison);
