@@ -6,7 +6,6 @@
 //! marker of a non-zero segment it lies on, else 1 on a boundary, else 0; a segment or edge gets its
 //! segment's marker, else 1 on a boundary, else 0.
 
-use crate::algorithms::constrain::LaterCopy;
 use crate::data::{Input, Output, VoronoiOutput};
 use crate::geometry::Point;
 use crate::mesh::raw::{triangle_of, RawMesh, GHOST};
@@ -164,6 +163,19 @@ fn into_i32(values: Vec<u32>) -> Vec<i32> {
     // `capacity` `u32`s by the global allocator, no longer owned by `values`) is one for
     // `capacity` `i32`s; its first `len` items are initialized, and every bit pattern is an i32.
     unsafe { Vec::from_raw_parts(ptr.cast::<i32>(), len, capacity) }
+}
+
+/// A later copy of segment `id` (the same two vertices) whose non-zero marker replaced the
+/// first copy's zero. Triangle marks vertices while it inserts segments in input order, each
+/// vertex keeping the first non-zero marker it gets: the copy's marker counts at the copy's
+/// place in that order, not at the first copy's. `order` places it: segment id `i` is at
+/// `i << 32`, a copy given after `count` ids at `(count − 1) << 32 | k` for the `k`-th such
+/// copy (from 1), so that copies given between the same two segments keep their order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LaterCopy {
+    pub id: u32,
+    pub order: u64,
+    pub marker: i32,
 }
 
 /// A finished mesh with the per-vertex and per-edge facts the outputs need.

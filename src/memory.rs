@@ -90,3 +90,18 @@ fn populate_for_writing(at: usize, bytes: usize) -> bool {
         false
     }
 }
+
+/// Asks the processor to bring the cache line of `value` into the cache: a hint, no effect on
+/// the program (nothing on other architectures).
+#[inline(always)]
+pub(crate) fn prefetch<T>(value: &T) {
+    #[cfg(target_arch = "x86_64")]
+    // SAFETY: the address of a live reference; a prefetch reads nothing into the program.
+    unsafe {
+        std::arch::x86_64::_mm_prefetch::<{ std::arch::x86_64::_MM_HINT_T0 }>(
+            (value as *const T).cast(),
+        )
+    };
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = value;
+}

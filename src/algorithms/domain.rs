@@ -113,7 +113,7 @@ fn flood(
             for e in ahead.edges() {
                 let u = mesh.twin(e).triangle();
                 if let Some(slot) = tags.get(u.index()) {
-                    prefetch(slot);
+                    crate::memory::prefetch(slot);
                 }
             }
         }
@@ -128,18 +128,6 @@ fn flood(
             }
         }
     }
-}
-
-/// Asks the processor to bring `value` into the cache (no effect on the program).
-#[inline(always)]
-fn prefetch(value: &u32) {
-    #[cfg(target_arch = "x86_64")]
-    // SAFETY: a prefetch of a valid reference's address reads nothing into the program.
-    unsafe {
-        std::arch::x86_64::_mm_prefetch::<{ std::arch::x86_64::_MM_HINT_T0 }>(
-            (value as *const u32).cast(),
-        )
-    };
 }
 
 /// Carves the domain out of a constrained triangulation: sets the triangle tags.

@@ -253,15 +253,10 @@ impl Mesh {
     /// whose triangles are otherwise each a cache miss away; no effect on the mesh).
     #[inline(always)]
     pub fn prefetch_adjacency(&self, t: TriangleId) {
-        #[cfg(target_arch = "x86_64")]
-        {
-            use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
-            let i = 3 * t.index();
-            for array in [&self.twins, &self.segment] {
-                if i < array.len() {
-                    // SAFETY: `i` is in bounds; a prefetch reads nothing into the program.
-                    unsafe { _mm_prefetch::<_MM_HINT_T0>(array.as_ptr().add(i).cast()) };
-                }
+        let i = 3 * t.index();
+        for array in [&self.twins, &self.segment] {
+            if let Some(first) = array.get(i) {
+                crate::memory::prefetch(first);
             }
         }
     }
@@ -380,14 +375,14 @@ impl Mesh {
         }
     }
 
-    /// Consumes the mesh for its corner array and points (the twins and the tracking are freed
-    /// first, so that the caller can build outputs in place without the mesh's peak memory).
     /// Takes the points out, leaving none: for a mesh whose points become an output and which
     /// is read no further (every other operation needs the points).
     pub fn take_points(&mut self) -> Vec<Point> {
         std::mem::take(&mut self.points)
     }
 
+    /// Consumes the mesh for its corner array and points (the twins and the tracking are freed
+    /// first, so that the caller can build outputs in place without the mesh's peak memory).
     pub fn into_corners_and_points(self) -> MeshParts {
         let Mesh {
             points,

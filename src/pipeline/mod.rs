@@ -1,13 +1,13 @@
 //! The driver: checks the input, runs the algorithms that the options ask for and assembles the
 //! [`Output`] and [`VoronoiOutput`].
 
-use crate::algorithms::constrain::{Constrainer, LaterCopy};
+use crate::algorithms::constrain::Constrainer;
 use crate::algorithms::delaunay::{self, merge, order, InInsertionOrder, Inserter, Triangulation};
 use crate::algorithms::domain::{carve, Domain};
 use crate::algorithms::reconstruct::reconstruct;
 use crate::algorithms::refine::{refine, Quality};
 use crate::algorithms::voronoi::{voronoi_diagram, DualOf};
-use crate::assemble::{self, FinishedMesh, Numbering};
+use crate::assemble::{self, FinishedMesh, LaterCopy, Numbering};
 use crate::data::{Hooks, Input, Output, Phase, UnsuitableFn, VoronoiOutput};
 use crate::error::Error;
 use crate::geometry::{Exact, Inexact, Point, Predicates};
@@ -244,7 +244,7 @@ fn run<P: Predicates>(
             for &(v, u) in &duplicates {
                 duplicate_of[v as usize] = u;
             }
-            insert_segments(
+            meshed.later_copies = insert_segments(
                 &mut cdt,
                 input,
                 &duplicate_of,
@@ -334,7 +334,6 @@ fn run<P: Predicates>(
                 .extend(report.warnings.iter().map(ToString::to_string));
         }
         meshed.segment_markers = std::mem::take(&mut cdt.markers);
-        meshed.later_copies = std::mem::take(&mut cdt.later_copies);
         meshed.mesh = cdt.into_mesh();
         // New vertices (crossings, Steiner points) have no input marker.
         meshed
@@ -369,7 +368,8 @@ fn output_phase<T>(hooks: &Hooks<'_>, slots: u32, build: impl FnOnce() -> T) -> 
 /// A segment given again (the same two vertices, either way round) is inserted once: a second
 /// insertion would find the first one's chain, which `s` builds from midpoints that rounding
 /// may put an ulp off the line, so that the second copy would cross it at slivers; where markers
-/// differ, a later non-zero marker replaces a zero one, as for overlapping segments.
+/// differ, a later non-zero marker replaces a zero one, as for overlapping segments, and the
+/// copies that did so are returned for the vertex markers ([`LaterCopy`]).
 fn insert_segments<P: Predicates>(
     cdt: &mut Constrainer<P>,
     input: &Input<'_>,
@@ -377,8 +377,9 @@ fn insert_segments<P: Predicates>(
     base: i32,
     hooks: &Hooks<'_>,
     warnings: &mut Vec<String>,
-) -> Result<(), Error> {
+) -> Result<Vec<LaterCopy>, Error> {
     let m = (input.segments.len() / 2) as u64;
+    let mut later_copies = Vec::new();
     hooks.report(Phase::Segments, 0, m);
     // A duplicate vertex is not in the triangulation: use the copy that is. In range:
     // `check_indices_and_seeds` refused the input otherwise.
@@ -412,8 +413,8 @@ fn insert_segments<P: Predicates>(
             if cdt.markers[id as usize] == 0 && marker != 0 {
                 cdt.markers[id as usize] = marker;
                 let order =
-                    (((cdt.markers.len() - 1) as u64) << 32) | (cdt.later_copies.len() as u64 + 1);
-                cdt.later_copies.push(LaterCopy { id, order, marker });
+                    (((cdt.markers.len() - 1) as u64) << 32) | (later_copies.len() as u64 + 1);
+                later_copies.push(LaterCopy { id, order, marker });
             }
             continue;
         }
@@ -425,7 +426,7 @@ fn insert_segments<P: Predicates>(
         }
     }
     hooks.report(Phase::Segments, m, m);
-    Ok(())
+    Ok(later_copies)
 }
 
 /// The mark of a later copy in [`first_copies`]' answer.
@@ -433,11 +434,12 @@ const COPY: u32 = 1 << 31;
 
 /// Per segment `i` of `count` (ends `ends(i)`, vertices below `vertex_count`): `COPY | j` when
 /// an earlier segment `j` joins the same two vertices (either way round; `j` the first such),
-/// else `NONE` (which the caller overwrites with a first copy's segment id once inserted). Found by bucketing the segments by their smaller end (a counting sort: two
-/// passes over the segments, a few bytes per vertex and segment, where a hash table of the
-/// pairs cost 2% of a constrained triangulation of 10^5 segments in its inserts and page
-/// faults); the segments of one bucket are in input order, compared pairwise, or sorted by
-/// their other end when a vertex has many.
+/// else `NONE` (which the caller overwrites with a first copy's segment id once inserted).
+/// Found by bucketing the segments by their smaller end (a counting sort: two passes over the
+/// segments, a few bytes per vertex and segment, where a hash table of the pairs cost 2% of a
+/// constrained triangulation of 10^5 segments in its inserts and page faults); the segments of
+/// one bucket are in input order, compared pairwise, or sorted by their other end when a vertex
+/// has many.
 fn first_copies(count: usize, vertex_count: usize, ends: impl Fn(usize) -> [u32; 2]) -> Vec<u32> {
     /// Above this many segments at one vertex, its bucket is sorted rather than compared
     /// pairwise.

@@ -73,19 +73,6 @@ enum Walk {
     Through(VertexId),
 }
 
-/// A later copy of segment `id` (the same two vertices) whose non-zero marker replaced the
-/// first copy's zero. Triangle marks vertices while it inserts segments in input order, each
-/// vertex keeping the first non-zero marker it gets: the copy's marker counts at the copy's
-/// place in that order, not at the first copy's. `order` places it: segment id `i` is at
-/// `i << 32`, a copy given after `count` ids at `(count − 1) << 32 | k` for the `k`-th such
-/// copy (from 1), so that copies given between the same two segments keep their order.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct LaterCopy {
-    pub id: u32,
-    pub order: u64,
-    pub marker: i32,
-}
-
 #[derive(Clone)]
 pub struct Constrainer<P: Predicates> {
     inserter: Inserter<P>,
@@ -95,10 +82,6 @@ pub struct Constrainer<P: Predicates> {
     pub markers: Vec<i32>,
     /// The endpoints of each segment id, as given (before crossings split it).
     pub ends: Vec<(VertexId, VertexId)>,
-    /// Copies of segments given again with a non-zero marker where the first copy had none:
-    /// the edge takes the copy's marker, but the vertices on it take it only where no segment
-    /// given before the copy marked them (see [`LaterCopy`]).
-    pub later_copies: Vec<LaterCopy>,
     /// `s`: recover segments by inserting midpoints (a conforming triangulation) instead of
     /// flipping crossing edges away.
     pub split_segments: bool,
@@ -157,7 +140,6 @@ impl<P: Predicates> Constrainer<P> {
             crossings: Vec::new(),
             markers: Vec::new(),
             ends: Vec::new(),
-            later_copies: Vec::new(),
             split_segments: false,
             scratch: Scratch::default(),
             crossed_pairs: HashSet::new(),
