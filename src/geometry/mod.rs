@@ -322,6 +322,21 @@ pub fn circumcenter(org: Point, dest: Point, apex: Point) -> (Point, f64, f64) {
     ([org[0] + dx, org[1] + dy], xi, eta)
 }
 
+/// The squared sine of the smallest angle of triangle (a, b, c), which grows with that angle
+/// (at most 60°): twice the area over the product of the two longest edges is the sine of the
+/// angle between them, the one opposite the shortest edge.
+pub fn min_angle_sin2([a, b, c]: [Point; 3]) -> f64 {
+    let sq = |p: Point, q: Point| (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2);
+    let (ab, bc, ca) = (sq(a, b), sq(b, c), sq(c, a));
+    let cross = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    let longest_two = ab * bc * ca / ab.min(bc).min(ca);
+    if longest_two > 0.0 {
+        cross * cross / longest_two
+    } else {
+        0.0
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

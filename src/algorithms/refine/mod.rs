@@ -21,6 +21,7 @@
 //! segment it cannot split, and stops at the Steiner-point budget (`S`) or when cancelled.
 
 use crate::data::{ProgressFn, UnsuitableFn};
+use crate::geometry::Point;
 use crate::mesh::{Mesh, TriangleId, VertexId, OUTSIDE};
 
 // The parts, each a type with its own state:
@@ -64,6 +65,11 @@ pub struct Quality<'a> {
     pub cancel: Option<&'a (dyn Fn() -> bool + Sync + 'a)>,
     /// Told of the work done and waiting where `cancel` is polled.
     pub progress: Option<&'a ProgressFn<'a>>,
+    /// The nearest point the caller's coordinates can hold, when the engine's frame is not the
+    /// caller's (a translation makes rounding finer than the caller's): the refined mesh is
+    /// moved onto that grid, then refined again with every new point rounded to it, so that the
+    /// mesh the caller receives meets the quality (see `Constrainer::move_onto_grid`).
+    pub caller_grid: Option<&'a (dyn Fn(Point) -> Point + Sync + 'a)>,
 }
 
 /// How a vertex came to be: it decides where segments next to it are split.
