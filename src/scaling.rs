@@ -40,7 +40,7 @@
 
 use crate::data::UnsuitableFn;
 use crate::error::Error;
-use crate::geometry::Point;
+use crate::geometry::{Grid, Point};
 
 /// The finest bit that a scaled coordinate may have (see the module documentation).
 pub const FINEST_SCALED_BIT: i32 = -240;
@@ -376,6 +376,13 @@ impl Scaling {
                 [[ox, oy], [dx, dy], [ax, ay]].map(|p| self.to_caller(p));
             test(ox, oy, dx, dy, ax, ay, self.unscale_area(area))
         }
+    }
+}
+
+/// The caller's grid ([`Scaling::on_caller_grid`]) for the engine's algorithms.
+impl Grid for Scaling {
+    fn round(&self, p: Point) -> Point {
+        self.on_caller_grid(p)
     }
 }
 

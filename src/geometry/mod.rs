@@ -294,6 +294,14 @@ impl Predicates for Inexact {
     }
 }
 
+/// The points a caller's coordinates can hold, in the engine's frame (a translated frame is finer
+/// than the caller's doubles: see `crate::scaling`). Vertices given back to the caller are put
+/// on it so that the caller receives exactly the mesh the engine checked.
+pub trait Grid: Sync {
+    /// The grid point nearest to `p`.
+    fn round(&self, p: Point) -> Point;
+}
+
 /// The coordinates `(xi, eta)` of `p` in the affine frame of triangle `(a, b, c)`:
 /// `p = a + xi·(b − a) + eta·(c − a)`; they interpolate vertex attributes linearly at `p`.
 pub fn frame_coordinates([a, b, c]: [Point; 3], p: Point) -> (f64, f64) {

@@ -5,7 +5,7 @@ use crate::algorithms::constrain::Constrainer;
 use crate::algorithms::delaunay::{self, merge, order, InInsertionOrder, Inserter, Triangulation};
 use crate::algorithms::domain::{carve, Domain};
 use crate::algorithms::reconstruct::reconstruct;
-use crate::algorithms::refine::{refine, Quality};
+use crate::algorithms::refine::{refine, CallerGrid, Quality};
 use crate::assemble::{self, LaterCopy};
 use crate::data::{Hooks, Input, Output, Phase, UnsuitableFn, VoronoiOutput};
 use crate::error::Error;
@@ -136,32 +136,65 @@ impl ScaledInput {
 /// and any other panic (an index out of range: a bug) is caught here when panics unwind.
 ///
 /// Refinement runs in a frame translated to a local origin where that is exact (see
-/// [`crate::scaling`]); in the rare case that rounding its new vertices onto the caller's grid
-/// would spoil the mesh (a domain thinner than its coordinates' rounding), the input is meshed
-/// again in the caller's own frame.
+/// [`crate::scaling`] and [`Frame`]); where rounding its new vertices onto the caller's grid
+/// would invert a triangle (refinement went below the caller's rounding), it runs again with
+/// its new points on that grid from the start, and failing that (a crossing of segments closer
+/// to a vertex than the rounding), in the caller's own frame.
 pub fn triangulate(
     options: &Options,
     input: &Input<'_>,
     hooks: &Hooks<'_>,
 ) -> Result<(Output, VoronoiOutput), Error> {
     check_supported(options)?;
-    match triangulate_in_frame(options, input, hooks, options.quality())? {
-        Some(result) => Ok(result),
-        None => triangulate_in_frame(options, input, hooks, false)?
-            .ok_or_else(|| Error::Internal("an untranslated frame was spoiled by rounding".into())),
+    let mut frame = if options.quality() {
+        Frame::Translated
+    } else {
+        Frame::Caller
+    };
+    loop {
+        if let Some(result) = triangulate_in_frame(options, input, hooks, frame)? {
+            return Ok(result);
+        }
+        frame = match frame {
+            Frame::Translated => Frame::TranslatedOnGrid,
+            Frame::TranslatedOnGrid => Frame::Caller,
+            Frame::Caller => {
+                return Err(Error::Internal(
+                    "the caller's frame was spoiled by rounding".into(),
+                ))
+            }
+        };
     }
 }
 
-/// [`triangulate`] in the frame of a local origin if `translate` and one is exact, else in the
-/// caller's; `None` when rounding onto the caller's grid spoils the translated frame's mesh.
+/// Where a run meshes (see [`triangulate`]).
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum Frame {
+    /// Translated to a local origin where that is exact: the mesh of the input translated
+    /// there, refined, moved onto the caller's grid and refined again on it.
+    Translated,
+    /// Translated, with the refinement's new points on the caller's grid from the start.
+    TranslatedOnGrid,
+    /// The caller's own coordinates (still scaled by a power of two where their magnitude
+    /// asks for it).
+    Caller,
+}
+
+/// [`triangulate`] in `frame` (the caller's when no local origin is exact); `None` when
+/// rounding onto the caller's grid spoils a translated frame's mesh.
+// Out of line: inlined into `triangulate`'s loop over frames, the optimised code tests bytes
+// of the options' `None` payloads (uninitialised, from `Options::parse`) that it then ignores,
+// which valgrind reports as a jump on uninitialised memory in the C tests.
+#[inline(never)]
 fn triangulate_in_frame(
     options: &Options,
     input: &Input<'_>,
     hooks: &Hooks<'_>,
-    translate: bool,
+    frame: Frame,
 ) -> Result<Option<(Output, VoronoiOutput)>, Error> {
     let (points, magnitudes) = checked_points(input)?;
     check_indices_and_seeds(options, input)?;
+    let translate = frame != Frame::Caller;
     let scaling = Scaling::for_screened_points(&points, magnitudes, translate)?;
     let mut scaled = ScaledInput::new(scaling, options, input, points);
     let points = std::mem::take(&mut scaled.points);
@@ -176,9 +209,9 @@ fn triangulate_in_frame(
     // only read, and the user test is called, never kept.
     std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         if options.no_exact {
-            run::<Inexact>(options, &input, &hooks, points, scaling)
+            run::<Inexact>(options, &input, &hooks, points, (scaling, frame))
         } else {
-            run::<Exact>(options, &input, &hooks, points, scaling)
+            run::<Exact>(options, &input, &hooks, points, (scaling, frame))
         }
     }))
     .unwrap_or_else(|panic| Err(Error::from_panic(panic)))
@@ -203,7 +236,7 @@ fn run<P: Predicates>(
     input: &Input<'_>,
     hooks: &Hooks<'_>,
     points: Vec<Point>,
-    scaling: Scaling,
+    (scaling, frame): (Scaling, Frame),
 ) -> Result<Option<(Output, VoronoiOutput)>, Error> {
     let n = points.len();
     let mut output = Output::default();
@@ -326,7 +359,6 @@ fn run<P: Predicates>(
                 let tag = cdt.mesh().tags().to_vec();
                 cdt.retain_triangles(|t| tag[t.index()] != OUTSIDE);
             }
-            let caller_grid = |p: Point| scaling.on_caller_grid(p);
             let quality = Quality {
                 min_angle: options.min_angle,
                 max_area: options.max_area,
@@ -342,7 +374,10 @@ fn run<P: Predicates>(
                 area_lattice: !(options.refine && options.variable_area),
                 cancel: hooks.cancel,
                 progress: hooks.progress,
-                caller_grid: scaling.translates().then_some(&caller_grid),
+                caller_grid: scaling.translates().then_some(CallerGrid {
+                    grid: &scaling,
+                    from_the_start: frame == Frame::TranslatedOnGrid,
+                }),
             };
             hooks.report(Phase::Refinement, 0, 0);
             let report = refine(
@@ -367,8 +402,7 @@ fn run<P: Predicates>(
         }
         // New vertices (crossings, Steiner points) onto the caller's grid: the outputs give
         // them back exactly (refinement in a translated frame did so already).
-        let on_caller_grid = |p: Point| scaling.on_caller_grid(p);
-        if !scaling.is_identity() && !cdt.move_onto_grid(&on_caller_grid) {
+        if !scaling.is_identity() && !cdt.move_onto_grid(&scaling) {
             if scaling.translates() {
                 return Ok(None);
             }

@@ -37,7 +37,6 @@ mod snap;
 mod tests;
 
 use cavity::CavityScratch;
-pub use grid::LARGEST_SHAPE_CHANGE;
 
 /// A vertex created where two segments cross: it lies on the edge from `from` to `to` at
 /// parameter `t` (for interpolating attributes).

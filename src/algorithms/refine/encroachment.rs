@@ -209,10 +209,17 @@ pub(super) fn split_parameter(
 /// distance over the triangle's height, which only a triangle less than some 10^-10 of its
 /// coordinates high (10^6 roundings) makes larger than 2^-20. In a domain thinner than the rounding
 /// of its coordinates every such split is refused unless the point falls exactly on the line.
-/// (On the caller's grid after a translated frame, the mesh was moved onto it with slivers of up
-/// to [`LARGEST_SHAPE_CHANGE`] of a triangle, and that is the bound there: see
-/// `Refinement::largest_sliver`.)
+/// (On the caller's grid in a translated frame, see [`GRID_SLIVER`].)
 pub(super) const BOUNDARY_SLIVER: f64 = 1.0 / (1u64 << 20) as f64;
+
+/// [`BOUNDARY_SLIVER`] on the caller's grid in a translated frame (`Refinement::largest_sliver`):
+/// the rounding there is the caller's own, a unit in the last place of coordinates whose
+/// features may be only thousands of units long, as Triangle's plain arithmetic rounds. So
+/// a sliver of up to an eighth of the triangle beside the subsegment is accepted: only a
+/// triangle within a few units in the last place of flat cuts more, and splitting it with a
+/// point off the line would make another as flat beside it (the boundary runs nearly through
+/// one of its vertices), so that refinement near it would not end.
+pub(super) const GRID_SLIVER: f64 = 1.0 / 8.0;
 
 /// Whether `p`, the rounded split point of the subsegment of half-edge `e`, splits it faithfully:
 /// - every triangle beside the subsegment splits into two counter-clockwise triangles (exact
