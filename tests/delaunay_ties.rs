@@ -171,6 +171,22 @@ fn cases(rng: &mut SplitMix64) -> Vec<(&'static str, Vec<Point>)> {
             "a small square",
             vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
         ),
+        ("a rectangle's border", {
+            let mut border: Vec<Point> = (0..30)
+                .flat_map(|i| [[i as f64, 0.0], [i as f64, 9.0]])
+                .collect();
+            border.extend((1..9).flat_map(|j| [[0.0, j as f64], [29.0, j as f64]]));
+            border
+        }),
+        // Two lines of collinear points crossing inside, cocircular around the centre.
+        (
+            "a cross",
+            (-20..=20)
+                .filter(|&i| i != 0)
+                .flat_map(|i| [[i as f64, 0.0], [0.0, i as f64]])
+                .chain([[0.0, 0.0]])
+                .collect(),
+        ),
         (
             "a line of squares",
             square_grid(2)
