@@ -292,11 +292,7 @@ impl Predicates for Exact {
         if -det > errbound {
             return false;
         }
-        let det = robust::incircle(coord(a), coord(b), coord(c), coord(d));
-        if det != 0.0 {
-            return det > 0.0;
-        }
-        perturbed_incircle_positive::<Self>(a, b, c, d)
+        exact_incircle_positive(coord(a), coord(b), coord(c), coord(d))
     }
 
     /// The same choice as the default, with the circle's terms computed once per candidate
@@ -321,6 +317,29 @@ impl Predicates for Exact {
         }
         (best, frame.apex_strictly_left())
     }
+}
+
+/// [`Exact::incircle_positive`] where the filter cannot decide: the adaptive exact stages, then
+/// the tie rule. One call out of the flips' loop, whose arguments (`Coord`s, a pair of scalars
+/// each: eight floating-point registers, as for `robust::incircle`; arrays would be passed in
+/// general registers, which the loop needs) are those the exact stages take anyway, so that the
+/// loop keeps nothing alive across it for the tie rule. Measured (callgrind, 3·10^5 uniform
+/// points, one core): 528 M instructions before the tie rule, 518 M so, 541 M with arrays as
+/// arguments, 555 M with the tie rule after a call of `robust::incircle` in the loop.
+#[cold]
+#[inline(never)]
+fn exact_incircle_positive(
+    a: robust::Coord<f64>,
+    b: robust::Coord<f64>,
+    c: robust::Coord<f64>,
+    d: robust::Coord<f64>,
+) -> bool {
+    let det = robust::incircle(a, b, c, d);
+    if det != 0.0 {
+        return det > 0.0;
+    }
+    let point = |p: robust::Coord<f64>| [p.x, p.y];
+    perturbed_incircle_positive::<Exact>(point(a), point(b), point(c), point(d))
 }
 
 /// Shewchuk's in-circle determinant in floating point (rows `a`, `b`, `c` relative to `d`) and
