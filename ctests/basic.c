@@ -403,6 +403,50 @@ static void error_paths(void) {
     }
 }
 
+/* Warnings are kept for the caller with or without Q (triangulate_last_warning): a duplicate
+ * vertex, and a quality mesh that the coordinates' precision keeps below the angle (300 points
+ * in a square 800 units in the last place wide at 10^15); a clean call clears them. */
+static void warnings(void) {
+    struct triangulateio in, out;
+    double doubled[2 * (NPOINTS + 1)];
+    make_input(&in);
+    memcpy(doubled, points, sizeof points);
+    doubled[2 * NPOINTS] = points[4];
+    doubled[2 * NPOINTS + 1] = points[5];
+    in.pointlist = doubled;
+    in.numberofpoints = NPOINTS + 1;
+    in.pointattributelist = NULL;
+    in.numberofpointattributes = 0;
+    in.pointmarkerlist = NULL;
+    memset(&out, 0, sizeof out);
+    CHECK(triangulate("zQ", &in, &out, NULL) == 0, "%s", triangulate_last_error());
+    CHECK(strstr(triangulate_last_warning(), "duplicate") != NULL, "duplicate warning: '%s'",
+          triangulate_last_warning());
+    free_all(&out);
+
+    enum { FAR = 300 };
+    static double far[2 * FAR];
+    unsigned long long state = 12345;
+    for (int i = 0; i < 2 * FAR; i++) {
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        far[i] = 1e15 + (double)(state >> 11) / 9007199254740992.0 * 100.0;
+    }
+    memset(&in, 0, sizeof in);
+    in.pointlist = far;
+    in.numberofpoints = FAR;
+    memset(&out, 0, sizeof out);
+    CHECK(triangulate("zq30Q", &in, &out, NULL) == 0, "%s", triangulate_last_error());
+    CHECK(strstr(triangulate_last_warning(), "precision") != NULL, "precision warning: '%s'",
+          triangulate_last_warning());
+    free_all(&out);
+
+    make_input(&in);
+    memset(&out, 0, sizeof out);
+    CHECK(triangulate("zQ", &in, &out, NULL) == 0, "%s", triangulate_last_error());
+    CHECK(triangulate_last_warning()[0] == '\0', "warning kept: '%s'", triangulate_last_warning());
+    free_all(&out);
+}
+
 int main(int argc, char **argv) {
     if (argc > 1 && strcmp(argv[1], "loud") == 0) {
         struct triangulateio in;
@@ -416,6 +460,7 @@ int main(int argc, char **argv) {
     caller_buffers();
     catch_exit();
     error_paths();
+    warnings();
     if (failures) {
         printf("%d check(s) failed\n", failures);
         return 1;

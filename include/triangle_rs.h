@@ -105,6 +105,15 @@ void trifree(void *memptr);
 const char *triangulate_last_error(void);
 
 /**
+ * The warnings of the last call on this thread, one per line ("" when it had none, or
+ * failed), with or without `Q`: duplicate vertices, and where a refined mesh falls short of
+ * what was asked (precision of the coordinates exhausted, an angle above the guarantee not
+ * reached, cancelled, a runaway stopped) although it is valid. The pointer stays valid until
+ * the next call on this thread.
+ */
+const char *triangulate_last_warning(void);
+
+/**
  * Reentrant triangulation: the `u` test is `unsuitable` (called with `user_data` last) for this
  * call only, and refinement stops early with a valid mesh once `*cancel` becomes non-zero (set it
  * from another thread with an atomic or volatile store; `cancel` may be NULL). No global state.

@@ -31,11 +31,16 @@ static GLOBAL_UNSUITABLE: AtomicPtr<c_void> = AtomicPtr::new(std::ptr::null_mut(
 
 thread_local! {
     static LAST_ERROR: RefCell<CString> = RefCell::new(CString::default());
+    static LAST_WARNING: RefCell<CString> = RefCell::new(CString::default());
+}
+
+fn set_message(slot: &'static std::thread::LocalKey<RefCell<CString>>, message: &str) {
+    let c = CString::new(message.replace('\0', " ")).unwrap_or_default();
+    slot.with(|slot| *slot.borrow_mut() = c);
 }
 
 fn set_last_error(message: &str) {
-    let c = CString::new(message.replace('\0', " ")).unwrap_or_default();
-    LAST_ERROR.with(|slot| *slot.borrow_mut() = c);
+    set_message(&LAST_ERROR, message);
 }
 
 /// A user pointer that may cross threads: the caller promises its callback is thread-safe.
@@ -67,6 +72,7 @@ unsafe fn run(
         .map_err(|_| Error::BadSwitches)?;
     let options = Options::parse(text, SwitchSource::Library)?;
     let quiet = options.quiet;
+    set_message(&LAST_WARNING, "");
     let result = (|| {
         if input.is_null() {
             return Err(Error::NullArgument("in"));
@@ -100,6 +106,7 @@ unsafe fn run(
         };
         let (mut mesh, voronoi) = result;
         let warnings = std::mem::take(&mut mesh.warnings);
+        set_message(&LAST_WARNING, &warnings.join("\n"));
         let in_copy = *in_ref;
         // SAFETY: `out`/`vorout` are valid (checked non-NULL) and their non-NULL arrays are
         // large enough (Triangle's contract).
@@ -308,4 +315,14 @@ pub extern "C" fn triunsuitable_callback(f: Option<TriunsuitableFn>) {
 #[no_mangle]
 pub extern "C" fn triangulate_last_error() -> *const c_char {
     LAST_ERROR.with(|slot| slot.borrow().as_ptr())
+}
+
+/// The warnings of the last call on this thread, one per line ("" when it had none, or
+/// failed), with or without `Q`: duplicate vertices, and where a refined mesh falls short of
+/// what was asked (precision of the coordinates exhausted, an angle above the guarantee not
+/// reached, cancelled, a runaway stopped) although it is valid. The pointer stays valid until
+/// the next call on this thread.
+#[no_mangle]
+pub extern "C" fn triangulate_last_warning() -> *const c_char {
+    LAST_WARNING.with(|slot| slot.borrow().as_ptr())
 }

@@ -1,5 +1,15 @@
-//! Internal scaling by a power of two, so that the exact predicates stay exact for coordinates of
-//! any magnitude.
+//! The engine's frame: the caller's coordinates translated to a local origin (where that is
+//! exact) and scaled by a power of two, so that the exact predicates stay exact for coordinates of
+//! any magnitude and refinement's new vertices are not rounded at the coordinates' magnitude.
+//!
+//! Translation (refinement only). Far from the origin (georeferenced data: 10^6 m offsets, a
+//! survey of 100 m) a double's rounding is large against the features: a split point rounded
+//! at 10^6 lands 10^-10 off its segment, which against a 10^-5-high triangle is a sliver that
+//! refinement must refuse. So each axis whose coordinates all lie within a factor of two of the
+//! one nearest zero, `o` (same sign, `|o| ≤ |x| ≤ 2|o|`), is translated by `o`: by Sterbenz's
+//! lemma `x - o` is then exact, and the engine meshes exactly the translated input, with
+//! rounding at the scale of the features. New vertices are moved onto the caller's grid before
+//! the outputs (see `pipeline::grid`), so that the way back, `x + o`, is exact too.
 //!
 //! Shewchuk's adaptive predicates are exact only while no product overflows or underflows, and
 //! `incircle` multiplies four coordinate differences. Multiplying every coordinate by the same
@@ -8,7 +18,7 @@
 //! coordinates and the outputs are scaled back: input vertices are given back bit for bit (the
 //! caller's own values), new vertices, Voronoi points and ray directions are scaled back
 //! (exact, unless they fall below the smallest normal numbers of a tiny input, see
-//! [`Scaling::rounds_on_output`]).
+//! [`Scaling::on_caller_grid`]).
 //!
 //! The bounds. Let `2^hi` be the largest coordinate magnitude rounded down to a power of two and
 //! `2^lo` the finest bit set in any coordinate (every coordinate is an integer multiple of
@@ -30,7 +40,7 @@
 
 use crate::data::UnsuitableFn;
 use crate::error::Error;
-use crate::geometry::Point;
+use crate::geometry::{Grid, Point};
 
 /// The finest bit that a scaled coordinate may have (see the module documentation).
 pub const FINEST_SCALED_BIT: i32 = -240;
@@ -174,20 +184,72 @@ fn times_power_of_two(x: f64, k: i32) -> f64 {
     unit * power_of_two(-1022) * power_of_two(target + 1022)
 }
 
-/// Scaled coordinate = caller's coordinate · `2^exponent`.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+/// The origin of one axis whose coordinates span `[low, high]`: the end nearest zero when every
+/// coordinate lies within a factor of two of it (then `x - origin` is exact for each, by
+/// Sterbenz's lemma), else 0.
+fn exact_origin(low: f64, high: f64) -> f64 {
+    let (near, far) = if low > 0.0 {
+        (low, high)
+    } else if high < 0.0 {
+        (high, low)
+    } else {
+        return 0.0;
+    };
+    if far.abs() <= 2.0 * near.abs() {
+        near
+    } else {
+        0.0
+    }
+}
+
+/// Engine coordinate = (caller's coordinate − `origin`) · `2^exponent`, per axis.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Scaling {
     pub exponent: i32,
+    /// The local origin, in the caller's units; 0 on an axis that is not translated.
+    pub origin: Point,
 }
 
 impl Scaling {
     /// The scaling for the points (x, y pairs), or the error that no scaling makes them safe.
     pub fn for_points(points: &[Point]) -> Result<Scaling, Error> {
-        Scaling::for_screened_points(points, Magnitudes::of(points.as_flattened()))
+        Scaling::for_screened_points(points, Magnitudes::of(points.as_flattened()), false)
     }
 
-    /// [`Scaling::for_points`] for finite points whose [`Magnitudes`] are known already.
-    pub fn for_screened_points(points: &[Point], magnitudes: Magnitudes) -> Result<Scaling, Error> {
+    /// The frame for finite points whose [`Magnitudes`] are known already: translated to an
+    /// exact local origin where `translate` asks for it and one exists (see the module
+    /// documentation), scaled so that the translated coordinates are safe.
+    pub fn for_screened_points(
+        points: &[Point],
+        magnitudes: Magnitudes,
+        translate: bool,
+    ) -> Result<Scaling, Error> {
+        let origin = if translate {
+            let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
+            for p in points {
+                for i in 0..2 {
+                    lo[i] = lo[i].min(p[i]);
+                    hi[i] = hi[i].max(p[i]);
+                }
+            }
+            [exact_origin(lo[0], hi[0]), exact_origin(lo[1], hi[1])]
+        } else {
+            [0.0; 2]
+        };
+        if origin == [0.0; 2] {
+            return Scaling::for_local_points(points, magnitudes).map(|s| Scaling { origin, ..s });
+        }
+        // Exact (Sterbenz), so the bounds are the translated points' own.
+        let local: Vec<Point> = points
+            .iter()
+            .map(|p| [p[0] - origin[0], p[1] - origin[1]])
+            .collect();
+        let magnitudes = Magnitudes::of(local.as_flattened());
+        Scaling::for_local_points(&local, magnitudes).map(|s| Scaling { origin, ..s })
+    }
+
+    /// The power of two for points already in the local frame.
+    fn for_local_points(points: &[Point], magnitudes: Magnitudes) -> Result<Scaling, Error> {
         if magnitudes.within_bounds() {
             return Ok(Scaling::default());
         }
@@ -228,11 +290,49 @@ impl Scaling {
             return Ok(Scaling::default());
         }
         let exponent = (-hi).max(FINEST_SCALED_BIT - lo);
-        Ok(Scaling { exponent })
+        Ok(Scaling {
+            exponent,
+            origin: [0.0; 2],
+        })
     }
 
+    /// Whether engine coordinates are the caller's.
     pub fn is_identity(&self) -> bool {
-        self.exponent == 0
+        self.exponent == 0 && !self.translates()
+    }
+
+    /// Whether some axis is translated to a local origin.
+    pub fn translates(&self) -> bool {
+        self.origin != [0.0; 2]
+    }
+
+    /// A caller's point in the engine's frame (exact for the input vertices).
+    pub fn to_engine(&self, p: Point) -> Point {
+        [
+            self.scale(p[0] - self.origin[0]),
+            self.scale(p[1] - self.origin[1]),
+        ]
+    }
+
+    /// An engine point in the caller's units: exact for a point on the caller's grid
+    /// ([`Scaling::on_caller_grid`]), else rounded to it.
+    pub fn to_caller(&self, p: Point) -> Point {
+        [
+            self.unscale(p[0]) + self.origin[0],
+            self.unscale(p[1]) + self.origin[1],
+        ]
+    }
+
+    /// The engine point nearest to `p` that the caller's units can represent exactly (which
+    /// [`Scaling::to_caller`] then gives back without rounding): `p` itself for an
+    /// untranslated frame of ordinary magnitude; else rounded to the caller's doubles (at
+    /// the translation's magnitude, or below the normal range of a tiny input). Exact back
+    /// into the engine's frame for points within the input's box (Sterbenz again).
+    pub fn on_caller_grid(&self, p: Point) -> Point {
+        if self.is_identity() {
+            return p;
+        }
+        self.to_engine(self.to_caller(p))
     }
 
     pub fn scale(&self, x: f64) -> f64 {
@@ -259,17 +359,11 @@ impl Scaling {
         times_power_of_two(area, -2 * self.exponent)
     }
 
-    /// A hole or region coordinate, scaled and kept within `±limit`, a bound beyond every
-    /// scaled vertex coordinate: a point outside that box is outside every triangle, and stays
-    /// so, while the predicates see no overflowing value.
-    pub fn scale_seed(&self, x: f64, limit: f64) -> f64 {
-        self.scale(x).clamp(-limit, limit)
-    }
-
-    /// Whether the scaled value `x` changes when given back in the caller's units (it falls
-    /// below the normal range of a tiny input and loses low bits).
-    pub fn rounds_on_output(&self, x: f64) -> bool {
-        self.scale(self.unscale(x)) != x
+    /// A hole or region point in the engine's frame, each coordinate kept within `±limit`, a
+    /// bound beyond every engine vertex coordinate: a point outside that box is outside every
+    /// triangle, and stays so, while the predicates see no overflowing value.
+    pub fn seed_to_engine(&self, p: Point, limit: f64) -> Point {
+        self.to_engine(p).map(|x| x.clamp(-limit, limit))
     }
 
     /// The user's test (`u`), called with the caller's coordinates and area.
@@ -278,17 +372,17 @@ impl Scaling {
         test: &'a UnsuitableFn<'a>,
     ) -> impl Fn(f64, f64, f64, f64, f64, f64, f64) -> bool + Sync + 'a {
         move |ox, oy, dx, dy, ax, ay, area| {
-            let u = |x| self.unscale(x);
-            test(
-                u(ox),
-                u(oy),
-                u(dx),
-                u(dy),
-                u(ax),
-                u(ay),
-                self.unscale_area(area),
-            )
+            let [[ox, oy], [dx, dy], [ax, ay]] =
+                [[ox, oy], [dx, dy], [ax, ay]].map(|p| self.to_caller(p));
+            test(ox, oy, dx, dy, ax, ay, self.unscale_area(area))
         }
+    }
+}
+
+/// The caller's grid ([`Scaling::on_caller_grid`]) for the engine's algorithms.
+impl Grid for Scaling {
+    fn round(&self, p: Point) -> Point {
+        self.on_caller_grid(p)
     }
 }
 
@@ -335,6 +429,32 @@ mod tests {
             assert!((1.0..2.0).contains(&scaled.abs()), "{x} → {scaled}");
             assert_eq!(s.unscale(scaled).to_bits(), x.to_bits());
         }
+    }
+
+    #[test]
+    fn translation_is_exact_or_not_made() {
+        // Within a factor of two of the end nearest zero, on either side of it.
+        assert_eq!(exact_origin(1e6, 1e6 + 0.001), 1e6);
+        assert_eq!(exact_origin(-5e6 - 0.01, -5e6), -5e6);
+        assert_eq!(exact_origin(1.0, 2.0), 1.0);
+        assert_eq!(exact_origin(1.0, 2.0000000000000004), 0.0);
+        assert_eq!(exact_origin(-1.0, 1.0), 0.0);
+        assert_eq!(exact_origin(0.0, 1.0), 0.0);
+        let points = [[1e12 + 0.25, -3.0], [1e12 + 999.5, -2.5], [1e12, -2.0]];
+        let s = Scaling::for_screened_points(&points, Magnitudes::of(points.as_flattened()), true)
+            .unwrap();
+        assert_eq!(s.origin, [1e12, -2.0]);
+        for p in points {
+            let local = s.to_engine(p);
+            assert_eq!(local[0], p[0] - 1e12);
+            assert_eq!(s.to_caller(local), p);
+            assert_eq!(s.on_caller_grid(local), local);
+        }
+        // A point between the caller's doubles is moved onto them, exactly in both frames.
+        let between = [s.to_engine(points[0])[0] + 2f64.powi(-30), 0.5];
+        let on = s.on_caller_grid(between);
+        assert_ne!(on, between);
+        assert_eq!(s.to_engine(s.to_caller(on)), on);
     }
 
     #[test]

@@ -22,8 +22,9 @@ fn profile_dir() -> PathBuf {
         .to_path_buf()
 }
 
-/// The shared library cargo built for this run; built with `cargo build --lib` if cargo did not
-/// produce it (it does whenever the crate type list has `cdylib`).
+/// The shared library of this source tree: `cargo build --lib` always runs (a no-op when the
+/// library is fresh), since cargo does not rebuild the `cdylib` for an integration test and a stale
+/// one would miss new symbols.
 fn library_dir() -> &'static Path {
     static DIR: OnceLock<PathBuf> = OnceLock::new();
     DIR.get_or_init(|| {
@@ -33,7 +34,7 @@ fn library_dir() -> &'static Path {
             std::env::consts::DLL_PREFIX,
             std::env::consts::DLL_SUFFIX
         ));
-        if !library.exists() {
+        {
             let profile = dir
                 .file_name()
                 .and_then(|n| n.to_str())

@@ -102,3 +102,21 @@ def test_import_needs_only_numpy_and_ctypes():
     assert result.returncode == 0, result.stderr
     first, second = result.stdout.splitlines()
     assert first == "[]" and second == "[]"
+
+
+def test_a_mesh_short_of_the_asked_quality_warns():
+    # 300 points in a square 800 units in the last place wide at 10^15: the coordinates cannot
+    # hold a 30° mesh. The call succeeds (a valid mesh) and says so, with or without Q.
+    rng = np.random.default_rng(5)
+    far = 1e15 + rng.random((300, 2)) * 100.0
+    with pytest.warns(RuntimeWarning, match="precision"):
+        out = triangle_rs.triangulate({"vertices": far}, "q30Q")
+    assert len(out["triangles"]) > 0
+    # The same points 10^6 times nearer to their doubles reach the angle, with no warning.
+    near = 1e9 + rng.random((300, 2)) * 1e-3
+    import warnings as python_warnings
+
+    with python_warnings.catch_warnings():
+        python_warnings.simplefilter("error", RuntimeWarning)
+        out = triangle_rs.triangulate({"vertices": near}, "q30Q")
+    assert len(out["triangles"]) > 0

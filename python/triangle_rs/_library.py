@@ -115,6 +115,11 @@ class Library:
             self._progress.restype = ctypes.c_int
         last_error.argtypes = []
         last_error.restype = ctypes.c_char_p
+        # `triangulate_last_warning`; absent from older builds.
+        self._last_warning = getattr(self._cdll, "triangulate_last_warning", None)
+        if self._last_warning is not None:
+            self._last_warning.argtypes = []
+            self._last_warning.restype = ctypes.c_char_p
         trifree.argtypes = [ctypes.c_void_p]
         trifree.restype = None
         self._reentrant = reentrant
@@ -130,12 +135,12 @@ class Library:
         unsuitable: "ctypes._CFuncPtr | None",
         cancel: ctypes.c_int,
         progress: "ctypes._CFuncPtr | None" = None,
-    ) -> tuple[int, str]:
+    ) -> tuple[int, str, list[str]]:
         """Runs ``triangulate_reentrant`` (``triangulate_progress`` with a ``progress``
-        callback); returns its code and, on failure, the message.
+        callback); returns its code, on failure the message, and on success the warnings.
 
-        The message is read on the calling thread right after the call, because the library
-        keeps it per thread.
+        Both are read on the calling thread right after the call, because the library keeps
+        them per thread.
         """
         callback = unsuitable if unsuitable is not None else UnsuitableCallback()
         arguments = (
@@ -154,9 +159,11 @@ class Library:
         else:
             code = self._reentrant(*arguments)
         if code == 0:
-            return 0, ""
+            text = self._last_warning() if self._last_warning is not None else None
+            warnings = text.decode("utf-8", "replace").splitlines() if text else []
+            return 0, "", warnings
         message = self._last_error()
-        return code, message.decode("utf-8", "replace") if message else ""
+        return code, message.decode("utf-8", "replace") if message else "", []
 
     def free(self, address: int) -> None:
         """Releases an array that the library allocated (``trifree``)."""

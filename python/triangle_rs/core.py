@@ -7,6 +7,7 @@ import ctypes
 import sys
 import threading
 import time
+import warnings
 from typing import Callable, Optional
 
 from ._library import CTriangulateIO, Library, ProgressCallback, UnsuitableCallback, load_library
@@ -114,18 +115,22 @@ def run(
     report = display.update if display is not None else (progress or None)
     c_progress = _wrap_progress(report, cancel, callback_errors) if report is not None else None
 
-    def call(_inputs: list = keep_alive) -> tuple[int, str]:
+    def call(_inputs: list = keep_alive) -> tuple[int, str, list[str]]:
         # `_inputs` holds the input arrays as long as the library may read them.
         return lib.triangulate(encoded, c_in, c_out, c_vorout, c_callback, cancel, c_progress)
 
     may_run_long = bool(_REFINING_SWITCHES & set(switches)) or c_in.numberofpoints >= _LARGE_INPUT_POINTS
     foreign = _ForeignCall(call, interruptible=may_run_long)
     try:
-        code, message = foreign.run_interruptibly(cancel)
+        code, message, library_warnings = foreign.run_interruptibly(cancel)
         if callback_errors:
             raise callback_errors[0]
         if code != 0:
             raise TriangulateError(message or f"triangulate failed (code {code})", code)
+        # What the library warns of (a mesh that falls short of the asked quality although
+        # valid, duplicate vertices), whether or not `Q` silenced its printing.
+        for text in library_warnings:
+            warnings.warn(text, RuntimeWarning, stacklevel=3)
         return from_c(c_out), from_c(c_vorout)
     finally:
         if display is not None:

@@ -383,6 +383,14 @@ impl Predicates for Inexact {
     }
 }
 
+/// The points a caller's coordinates can hold, in the engine's frame (a translated frame is finer
+/// than the caller's doubles: see `crate::scaling`). Vertices given back to the caller are put
+/// on it so that the caller receives exactly the mesh the engine checked.
+pub trait Grid: Sync {
+    /// The grid point nearest to `p`.
+    fn round(&self, p: Point) -> Point;
+}
+
 /// The coordinates `(xi, eta)` of `p` in the affine frame of triangle `(a, b, c)`:
 /// `p = a + xi·(b − a) + eta·(c − a)`; they interpolate vertex attributes linearly at `p`.
 pub fn frame_coordinates([a, b, c]: [Point; 3], p: Point) -> (f64, f64) {
@@ -409,6 +417,21 @@ pub fn circumcenter(org: Point, dest: Point, apex: Point) -> (Point, f64, f64) {
     let xi = (yao * dx - xao * dy) * (2.0 * denominator);
     let eta = (xdo * dy - ydo * dx) * (2.0 * denominator);
     ([org[0] + dx, org[1] + dy], xi, eta)
+}
+
+/// The squared sine of the smallest angle of triangle (a, b, c), which grows with that angle
+/// (at most 60°): twice the area over the product of the two longest edges is the sine of the
+/// angle between them, the one opposite the shortest edge.
+pub fn min_angle_sin2([a, b, c]: [Point; 3]) -> f64 {
+    let sq = |p: Point, q: Point| (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2);
+    let (ab, bc, ca) = (sq(a, b), sq(b, c), sq(c, a));
+    let cross = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    let longest_two = ab * bc * ca / ab.min(bc).min(ca);
+    if longest_two > 0.0 {
+        cross * cross / longest_two
+    } else {
+        0.0
+    }
 }
 
 #[cfg(test)]

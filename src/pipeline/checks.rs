@@ -147,7 +147,6 @@ pub(super) fn check_indices_and_seeds(options: &Options, input: &Input<'_>) -> R
     Ok(())
 }
 
-/// The inputs that the engine sees in scaled units (see [`crate::scaling`]).
 /// `C`: checks the final mesh with exact arithmetic and reports what it found.
 pub(super) fn check_mesh<P: Predicates>(meshed: &Meshed) -> String {
     let mesh = &meshed.mesh;

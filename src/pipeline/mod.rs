@@ -5,17 +5,17 @@ use crate::algorithms::constrain::Constrainer;
 use crate::algorithms::delaunay::{self, merge, order, InInsertionOrder, Inserter, Triangulation};
 use crate::algorithms::domain::{carve, Domain};
 use crate::algorithms::reconstruct::reconstruct;
-use crate::algorithms::refine::{refine, Quality};
-use crate::algorithms::voronoi::{voronoi_diagram, DualOf};
-use crate::assemble::{self, FinishedMesh, LaterCopy, Numbering};
+use crate::algorithms::refine::{refine, CallerGrid, Quality};
+use crate::assemble::{self, LaterCopy};
 use crate::data::{Hooks, Input, Output, Phase, UnsuitableFn, VoronoiOutput};
 use crate::error::Error;
 use crate::geometry::{Exact, Inexact, Point, Predicates};
-use crate::mesh::{Mesh, TriangleId, VertexId, GHOST, NONE, OUTSIDE};
+use crate::mesh::{Mesh, VertexId, NONE, OUTSIDE};
 use crate::options::{Algorithm, Options};
 use crate::scaling::Scaling;
 
 mod checks; // the switches and input before any work, the finished mesh after (`C`)
+mod outputs; // the outputs of the finished mesh, in the caller's units
 
 use checks::{check_indices_and_seeds, check_mesh, check_supported, checked_points};
 
@@ -86,18 +86,25 @@ impl ScaledInput {
             }
         } else if !scaling.is_identity() {
             for p in &mut points {
-                *p = p.map(|x| scaling.scale(x));
+                *p = scaling.to_engine(*p);
                 limit = limit.max(p[0].abs()).max(p[1].abs());
             }
         }
         // Beyond every vertex coordinate (a power of two times `limit` is exact).
         limit *= 4.0;
-        let seed = |x: f64| scaling.scale_seed(x, limit);
-        let holes = input.holes.iter().map(|&x| seed(x)).collect();
+        let seed = |x: f64, y: f64| scaling.seed_to_engine([x, y], limit);
+        let holes = input
+            .holes
+            .chunks_exact(2)
+            .flat_map(|h| seed(h[0], h[1]))
+            .collect();
         let regions = input
             .regions
             .chunks_exact(4)
-            .flat_map(|r| [seed(r[0]), seed(r[1]), r[2], scaling.scale_area(r[3])])
+            .flat_map(|r| {
+                let [x, y] = seed(r[0], r[1]);
+                [x, y, r[2], scaling.scale_area(r[3])]
+            })
             .collect();
         let triangle_areas = input
             .triangle_areas
@@ -127,15 +134,68 @@ impl ScaledInput {
 /// the C ABI, the command-line program and Rust callers all come through here. A failed internal
 /// invariant is an [`Error::Internal`], not a panic: the algorithms report the ones they check,
 /// and any other panic (an index out of range: a bug) is caught here when panics unwind.
+///
+/// Refinement runs in a frame translated to a local origin where that is exact (see
+/// [`crate::scaling`] and [`Frame`]); where rounding its new vertices onto the caller's grid
+/// would invert a triangle (refinement went below the caller's rounding), it runs again with
+/// its new points on that grid from the start, and failing that (a crossing of segments closer
+/// to a vertex than the rounding), in the caller's own frame.
 pub fn triangulate(
     options: &Options,
     input: &Input<'_>,
     hooks: &Hooks<'_>,
 ) -> Result<(Output, VoronoiOutput), Error> {
     check_supported(options)?;
+    let mut frame = if options.quality() {
+        Frame::Translated
+    } else {
+        Frame::Caller
+    };
+    loop {
+        if let Some(result) = triangulate_in_frame(options, input, hooks, frame)? {
+            return Ok(result);
+        }
+        frame = match frame {
+            Frame::Translated => Frame::TranslatedOnGrid,
+            Frame::TranslatedOnGrid => Frame::Caller,
+            Frame::Caller => {
+                return Err(Error::Internal(
+                    "the caller's frame was spoiled by rounding".into(),
+                ))
+            }
+        };
+    }
+}
+
+/// Where a run meshes (see [`triangulate`]).
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum Frame {
+    /// Translated to a local origin where that is exact: the mesh of the input translated
+    /// there, refined, moved onto the caller's grid and refined again on it.
+    Translated,
+    /// Translated, with the refinement's new points on the caller's grid from the start.
+    TranslatedOnGrid,
+    /// The caller's own coordinates (still scaled by a power of two where their magnitude
+    /// asks for it).
+    Caller,
+}
+
+/// [`triangulate`] in `frame` (the caller's when no local origin is exact); `None` when
+/// rounding onto the caller's grid spoils a translated frame's mesh.
+// Out of line: inlined into `triangulate`'s loop over frames, the optimised code tests bytes
+// of the options' `None` payloads (uninitialised, from `Options::parse`) that it then ignores,
+// which valgrind reports as a jump on uninitialised memory in the C tests.
+#[inline(never)]
+fn triangulate_in_frame(
+    options: &Options,
+    input: &Input<'_>,
+    hooks: &Hooks<'_>,
+    frame: Frame,
+) -> Result<Option<(Output, VoronoiOutput)>, Error> {
     let (points, magnitudes) = checked_points(input)?;
     check_indices_and_seeds(options, input)?;
-    let scaling = Scaling::for_screened_points(&points, magnitudes)?;
+    let translate = frame != Frame::Caller;
+    let scaling = Scaling::for_screened_points(&points, magnitudes, translate)?;
     let mut scaled = ScaledInput::new(scaling, options, input, points);
     let points = std::mem::take(&mut scaled.points);
     let options = &scaled.options;
@@ -149,9 +209,9 @@ pub fn triangulate(
     // only read, and the user test is called, never kept.
     std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         if options.no_exact {
-            run::<Inexact>(options, &input, &hooks, points, scaling)
+            run::<Inexact>(options, &input, &hooks, points, (scaling, frame))
         } else {
-            run::<Exact>(options, &input, &hooks, points, scaling)
+            run::<Exact>(options, &input, &hooks, points, (scaling, frame))
         }
     }))
     .unwrap_or_else(|panic| Err(Error::from_panic(panic)))
@@ -176,8 +236,8 @@ fn run<P: Predicates>(
     input: &Input<'_>,
     hooks: &Hooks<'_>,
     points: Vec<Point>,
-    scaling: Scaling,
-) -> Result<(Output, VoronoiOutput), Error> {
+    (scaling, frame): (Scaling, Frame),
+) -> Result<Option<(Output, VoronoiOutput)>, Error> {
     let n = points.len();
     let mut output = Output::default();
     let base = options.first_index();
@@ -213,9 +273,9 @@ fn run<P: Predicates>(
     hooks.report(Phase::Delaunay, n as u64, n as u64);
     if plain && mesh.triangle_count() > 0 {
         let slots = mesh.triangle_count();
-        return Ok(output_phase(hooks, slots, || {
+        return Ok(Some(output_phase(hooks, slots, || {
             assemble::delaunay_outputs(options, input, mesh, names, output)
-        }));
+        })));
     }
     if let Some((names, points)) = names {
         // No triangle: the general path, in the caller's numbers.
@@ -314,6 +374,10 @@ fn run<P: Predicates>(
                 area_lattice: !(options.refine && options.variable_area),
                 cancel: hooks.cancel,
                 progress: hooks.progress,
+                caller_grid: scaling.translates().then_some(CallerGrid {
+                    grid: &scaling,
+                    from_the_start: frame == Frame::TranslatedOnGrid,
+                }),
             };
             hooks.report(Phase::Refinement, 0, 0);
             let report = refine(
@@ -329,9 +393,25 @@ fn run<P: Predicates>(
                 report.steiner_points,
                 report.steiner_points,
             );
+            if report.off_grid {
+                return Ok(None); // meshed again in the caller's frame
+            }
             output
                 .warnings
                 .extend(report.warnings.iter().map(ToString::to_string));
+        }
+        // New vertices (crossings, Steiner points) onto the caller's grid: the outputs give
+        // them back exactly (refinement in a translated frame did so already).
+        if !scaling.is_identity() && !cdt.move_onto_grid(&scaling) {
+            if scaling.translates() {
+                return Ok(None);
+            }
+            return Err(Error::CoordinateRange(
+                "The mesh needs new vertices closer together than floating-point numbers can be at the \
+                 magnitude of these coordinates (below the smallest normal number, 2^-1022): given back \
+                 in the caller's units they would invert a triangle. Scale the input up."
+                    .into(),
+            ));
         }
         meshed.segment_markers = std::mem::take(&mut cdt.markers);
         meshed.mesh = cdt.into_mesh();
@@ -352,8 +432,9 @@ fn run<P: Predicates>(
     }
     let slots = meshed.mesh.triangle_count();
     output_phase(hooks, slots, || {
-        write_outputs(options, input, meshed, output, scaling)
+        outputs::write_outputs(options, input, meshed, output, scaling)
     })
+    .map(Some)
 }
 
 /// Builds the outputs of a mesh of `slots` triangle slots, reporting the output phase.
@@ -493,183 +574,6 @@ fn first_copies(count: usize, vertex_count: usize, ends: impl Fn(usize) -> [u32;
         }
     }
     copy_of
-}
-
-fn write_outputs(
-    options: &Options,
-    input: &Input<'_>,
-    mut meshed: Meshed,
-    mut output: Output,
-    scaling: Scaling,
-) -> Result<(Output, VoronoiOutput), Error> {
-    let mesh = &meshed.mesh;
-    // With no triangle at all (all points on a line) no vertex is left out, as in Triangle.
-    let all_collinear = mesh.triangle_count() == 0 && !meshed.uses_segments;
-    let triangle_in_mesh: Vec<bool> = mesh.tags().iter().map(|&tag| tag != OUTSIDE).collect();
-    // Only `j` asks which vertices are corners of output triangles.
-    let mut vertex_in_mesh = Vec::new();
-    if options.jettison {
-        vertex_in_mesh = vec![all_collinear; mesh.vertex_count() as usize];
-        for (t, &inside) in triangle_in_mesh.iter().enumerate() {
-            if inside {
-                for v in mesh.triangle(TriangleId::new(t as u32)) {
-                    if v != GHOST {
-                        vertex_in_mesh[v.index()] = true;
-                    }
-                }
-            }
-        }
-    }
-    // `r` with six-node triangles: as in Triangle, the input's mid-edge nodes (listed only after
-    // the three corners) are left out of the output, with or without `j`.
-    let mut jettison = options.jettison;
-    if options.refine && input.corners > 3 && !options.jettison {
-        let base = i64::from(options.first_index());
-        let n = mesh.vertex_count() as usize;
-        let mut mid_node_only = vec![false; n];
-        let index = |v: i32| usize::try_from(i64::from(v) - base).ok().filter(|&i| i < n);
-        for t in input.triangles.chunks_exact(input.corners) {
-            for &v in &t[3..] {
-                if let Some(i) = index(v) {
-                    mid_node_only[i] = true;
-                }
-            }
-        }
-        for t in input.triangles.chunks_exact(input.corners) {
-            for &v in &t[..3] {
-                if let Some(i) = index(v) {
-                    mid_node_only[i] = false;
-                }
-            }
-        }
-        if mid_node_only.contains(&true) {
-            jettison = true;
-            // With `jettison` set, `vertex_in_mesh` says which vertices are kept.
-            vertex_in_mesh = mid_node_only.iter().map(|&mid| !mid).collect();
-        }
-    }
-    // The output points are the mesh's own, moved out once nothing reads them any more (a copy
-    // would touch as many fresh pages again), unless some are left out, scaled back or followed
-    // by `o2`'s mid-edge nodes.
-    let move_points = scaling.is_identity()
-        && !options.output.no_node_output
-        && !jettison
-        && !options.second_order;
-    let finished = FinishedMesh {
-        mesh,
-        points_moved_in_later: move_points,
-        point_attributes: &meshed.point_attributes,
-        point_attribute_count: input.point_attribute_count,
-        input_point_markers: &meshed.point_markers,
-        all_collinear,
-        vertex_in_mesh: &vertex_in_mesh,
-        triangle_in_mesh: &triangle_in_mesh,
-        segment_markers: mesh
-            .tracks_segments()
-            .then_some(&meshed.segment_markers[..]),
-        later_copies: &meshed.later_copies,
-        uses_segments: meshed.uses_segments,
-    };
-    let numbering = finished.numbering(options, jettison);
-    finished.write(options, &numbering, &mut output);
-    // Triangle attributes: with `r` the input triangles' (inherited by their pieces), with `A`
-    // (and regions) the region's (0 outside every region).
-    let domain = &meshed.domain;
-    // `A` without regions: a column of zeros, as Triangle's manual says (Triangle itself
-    // writes no column then).
-    if (options.refine || options.region_attributes) && domain.attribute_count > 0 {
-        let attributes = numbering
-            .triangles
-            .iter()
-            .flat_map(|&t| domain.attributes_of(mesh.tags()[t as usize]))
-            .copied()
-            .collect();
-        output.triangle_attribute_count = domain.attribute_count;
-        output.triangle_attributes = (!options.output.no_element_output).then_some(attributes);
-    }
-    let base = options.first_index();
-    let mut voronoi = VoronoiOutput {
-        point_count: output.triangle_count,
-        point_attribute_count: input.point_attribute_count,
-        edge_count: output.edge_count,
-        diagram: None,
-    };
-    if options.output.voronoi {
-        let dual = DualOf {
-            triangles: &numbering.triangles,
-            triangle_index: &numbering.triangle,
-            edges: &numbering.edges,
-            point_attributes: finished.point_attributes,
-            point_attribute_count: finished.point_attribute_count,
-            base,
-        };
-        voronoi.diagram = Some(voronoi_diagram(finished.mesh, &dual));
-    }
-    if !scaling.is_identity() {
-        unscale_outputs(
-            scaling,
-            input.points,
-            mesh,
-            &numbering,
-            &mut output,
-            &mut voronoi,
-        )?;
-    }
-    if move_points {
-        output.points = Some(meshed.mesh.take_points().into_flattened());
-    }
-    Ok((output, voronoi))
-}
-
-/// Gives the outputs back in the caller's units: input vertices as the caller gave them, bit for
-/// bit, new vertices, Voronoi points and ray directions scaled back. New vertices of a tiny
-/// input can fall below the normal range there and lose low bits; then the mesh is checked with
-/// the rounded coordinates and refused if a triangle would not stay counter-clockwise.
-fn unscale_outputs(
-    scaling: Scaling,
-    caller_points: &[f64],
-    mesh: &Mesh,
-    numbering: &Numbering,
-    output: &mut Output,
-    voronoi: &mut VoronoiOutput,
-) -> Result<(), Error> {
-    let n = caller_points.len() / 2;
-    let new_vertices = &mesh.points()[n..];
-    if new_vertices
-        .iter()
-        .any(|p| scaling.rounds_on_output(p[0]) || scaling.rounds_on_output(p[1]))
-    {
-        let rounded = |v: VertexId| mesh.point(v).map(|x| scaling.scale(scaling.unscale(x)));
-        if numbering.triangles.iter().any(|&t| {
-            let [a, b, c] = mesh.triangle(TriangleId::new(t)).map(rounded);
-            Exact::orient2d(a, b, c) <= 0.0
-        }) {
-            return Err(Error::CoordinateRange(
-                "The mesh needs new vertices closer together than floating-point numbers can be at the \
-                 magnitude of these coordinates (below the smallest normal number, 2^-1022): given back \
-                 in the caller's units they would invert a triangle. Scale the input up."
-                    .into(),
-            ));
-        }
-    }
-    if let Some(points) = output.points.as_mut() {
-        for x in points.iter_mut() {
-            *x = scaling.unscale(*x);
-        }
-        for v in 0..n {
-            let i = numbering.vertex_index(v as u32);
-            if i != NONE {
-                let i = i as usize;
-                points[2 * i..2 * i + 2].copy_from_slice(&caller_points[2 * v..2 * v + 2]);
-            }
-        }
-    }
-    if let Some(diagram) = voronoi.diagram.as_mut() {
-        for x in diagram.points.iter_mut().chain(diagram.norms.iter_mut()) {
-            *x = scaling.unscale(*x);
-        }
-    }
-    Ok(())
 }
 
 #[cfg(test)]

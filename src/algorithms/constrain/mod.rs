@@ -28,8 +28,10 @@ use crate::mesh::{EdgeId, Ghosts, Lawson, Mesh, Quad, TriangleId, VertexId, GHOS
 
 // The parts: this file inserts segments (walks, crossings, vertices on segments, hull segments,
 // point location for holes and regions); `cavity` recovers a segment across crossed triangles;
-// `snap` makes vertices within a distance of a segment vertices of it (before refinement).
+// `snap` makes vertices within a distance of a segment vertices of it (before refinement);
+// `grid` moves vertices onto the caller's grid (before the outputs).
 mod cavity;
+mod grid;
 mod snap;
 #[cfg(test)]
 mod tests;

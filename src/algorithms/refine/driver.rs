@@ -71,13 +71,32 @@ pub fn refine<P: Predicates>(
         runaway_limit,
         warnings: Vec::new(),
     };
-    let outcome = match quality.min_angle {
+    let from_the_start = quality.caller_grid.is_some_and(|c| c.from_the_start);
+    if from_the_start && !driver.refinement.move_onto_caller_grid() {
+        return Report {
+            steiner_points: 0,
+            warnings: Vec::new(),
+            off_grid: true,
+        };
+    }
+    let mut outcome = match quality.min_angle {
         Some(angle) if angle > GUARANTEED_ANGLE => driver.refine_beyond_the_guarantee(angle),
         _ => {
             driver.seed();
             driver.run_within(None)
         }
     };
+    // In a frame finer than the caller's: the mesh goes onto the caller's grid, and what
+    // rounding spoiled there is refined again, at the angle of the last run, with new points on
+    // that grid (where rounding does not cost the angle, this changes nothing).
+    let mut off_grid = false;
+    if quality.caller_grid.is_some() && !from_the_start && outcome == Outcome::Finished {
+        if driver.refinement.move_onto_caller_grid() {
+            outcome = driver.run_within(None);
+        } else {
+            off_grid = true;
+        }
+    }
     let tally = driver.refinement.tally();
     let mut warnings = driver.warnings;
     if outcome == Outcome::Runaway {
@@ -98,6 +117,7 @@ pub fn refine<P: Predicates>(
     Report {
         steiner_points: tally.steiner_points,
         warnings,
+        off_grid,
     }
 }
 

@@ -3,10 +3,9 @@
 //! midpoint, or a concentric shell around an acute input corner (Ruppert 1995 §5, Shewchuk 2002
 //! §4.1).
 
-use super::split_point::min_angle_sin2;
 use super::{inside, VertexKind};
 use crate::algorithms::delaunay::Location;
-use crate::geometry::{Point, Predicates};
+use crate::geometry::{min_angle_sin2, Point, Predicates};
 use crate::mesh::{EdgeId, Mesh, TriangleId, VertexId, GHOST};
 
 /// The encroachment test for an angle bound θ.
@@ -210,21 +209,36 @@ pub(super) fn split_parameter(
 /// distance over the triangle's height, which only a triangle less than some 10^-10 of its
 /// coordinates high (10^6 roundings) makes larger than 2^-20. In a domain thinner than the rounding
 /// of its coordinates every such split is refused unless the point falls exactly on the line.
-const BOUNDARY_SLIVER: f64 = 1.0 / (1u64 << 20) as f64;
+/// (On the caller's grid in a translated frame, see [`GRID_SLIVER`].)
+pub(super) const BOUNDARY_SLIVER: f64 = 1.0 / (1u64 << 20) as f64;
+
+/// [`BOUNDARY_SLIVER`] on the caller's grid in a translated frame (`Refinement::largest_sliver`):
+/// the rounding there is the caller's own, a unit in the last place of coordinates whose
+/// features may be only thousands of units long, as Triangle's plain arithmetic rounds. So
+/// a sliver of up to an eighth of the triangle beside the subsegment is accepted: only a
+/// triangle within a few units in the last place of flat cuts more, and splitting it with a
+/// point off the line would make another as flat beside it (the boundary runs nearly through
+/// one of its vertices), so that refinement near it would not end.
+pub(super) const GRID_SLIVER: f64 = 1.0 / 8.0;
 
 /// Whether `p`, the rounded split point of the subsegment of half-edge `e`, splits it faithfully:
 /// - every triangle beside the subsegment splits into two counter-clockwise triangles (exact
 ///   orientation: `p` lies strictly inside the union of the two triangles beside it, so it is on
 ///   no existing vertex and no other edge);
 /// - on a boundary subsegment (the domain on one side only), the sliver between `p` and the
-///   subsegment is at most [`BOUNDARY_SLIVER`] of the domain triangle beside it, on whichever
+///   subsegment is at most `largest_sliver` of the domain triangle beside it, on whichever
 ///   side `p` was rounded to. Rounded outward, `p` would widen the domain; rounded inward, it
 ///   would narrow it; in a domain thinner than the rounding of its coordinates either changes
 ///   its area by a large fraction (exactly on the line, `p` changes nothing).
 ///
 /// The domain's area thus changes by at most that fraction of the triangles split at its
 /// boundary.
-pub(super) fn splits_faithfully<P: Predicates>(mesh: &Mesh, e: EdgeId, p: Point) -> bool {
+pub(super) fn splits_faithfully<P: Predicates>(
+    mesh: &Mesh,
+    e: EdgeId,
+    p: Point,
+    largest_sliver: f64,
+) -> bool {
     let sides = [e, mesh.twin(e)];
     let in_domain = sides.map(|h| mesh.apex(h) != GHOST && inside(mesh, h.triangle()));
     let splits_cleanly = sides.iter().all(|&h| {
@@ -242,7 +256,7 @@ pub(super) fn splits_faithfully<P: Predicates>(mesh: &Mesh, e: EdgeId, p: Point)
     let h = if in_domain[0] { sides[0] } else { sides[1] };
     let (a, b) = (mesh.point(mesh.origin(h)), mesh.point(mesh.dest(h)));
     let sliver = P::orient2d(a, b, p).abs();
-    sliver == 0.0 || sliver <= BOUNDARY_SLIVER * P::orient2d(a, b, mesh.point(mesh.apex(h)))
+    sliver == 0.0 || sliver <= largest_sliver * P::orient2d(a, b, mesh.point(mesh.apex(h)))
 }
 
 /// For an input vertex `x` where two segments meet at less than 90°: the cosine of the smallest

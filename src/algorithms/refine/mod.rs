@@ -21,6 +21,7 @@
 //! segment it cannot split, and stops at the Steiner-point budget (`S`) or when cancelled.
 
 use crate::data::{ProgressFn, UnsuitableFn};
+use crate::geometry::Grid;
 use crate::mesh::{Mesh, TriangleId, VertexId, OUTSIDE};
 
 // The parts, each a type with its own state:
@@ -64,6 +65,24 @@ pub struct Quality<'a> {
     pub cancel: Option<&'a (dyn Fn() -> bool + Sync + 'a)>,
     /// Told of the work done and waiting where `cancel` is polled.
     pub progress: Option<&'a ProgressFn<'a>>,
+    /// The points the caller's coordinates can hold, when the engine's frame is not the
+    /// caller's (a translation makes rounding finer than the caller's): the mesh the caller
+    /// receives must meet the quality on it (see `Constrainer::move_onto_grid`).
+    pub caller_grid: Option<CallerGrid<'a>>,
+}
+
+/// How refinement meets the quality on the caller's grid ([`Quality::caller_grid`]).
+#[derive(Clone, Copy)]
+pub struct CallerGrid<'a> {
+    /// The grid.
+    pub grid: &'a dyn Grid,
+    /// Whether every new point is rounded to the grid as it is made (Triangle's plain
+    /// arithmetic, where the caller's coordinates are all there is). Else the mesh is refined
+    /// in the finer frame (the mesh of the translated input), moved onto the grid, and
+    /// refined again there with new points rounded to it; where the move would invert a
+    /// triangle (refinement in the finer frame went below the caller's rounding) the
+    /// refinement reports `off_grid`, to be run again from the start on the grid.
+    pub from_the_start: bool,
 }
 
 /// How a vertex came to be: it decides where segments next to it are split.

@@ -8,15 +8,17 @@ use std::collections::{HashSet, VecDeque};
 
 use super::attributes::Attributes;
 use super::driver::Polling;
-use super::encroachment::{split_parameter, splits_faithfully, Cavity, Encroachment};
+use super::encroachment::{
+    split_parameter, splits_faithfully, Cavity, Encroachment, BOUNDARY_SLIVER, GRID_SLIVER,
+};
 use super::queue::{BadQueue, BadTriangle};
-use super::split_point::{min_angle_sin2, AngleBound};
+use super::split_point::AngleBound;
 use super::walk::{walk, Walk};
 use super::{inside, Quality, VertexKind};
 use crate::algorithms::constrain::Constrainer;
 use crate::algorithms::delaunay::Location;
 use crate::algorithms::domain::Domain;
-use crate::geometry::{frame_coordinates, Point, Predicates};
+use crate::geometry::{frame_coordinates, min_angle_sin2, Grid, Point, Predicates};
 use crate::mesh::{EdgeId, Mesh, TriangleId, VertexId, GHOST};
 
 /// What a refinement works toward, and at what resolution: fixed for all its runs.
@@ -110,6 +112,9 @@ pub(super) struct Refinement<'r, 'q, P: Predicates> {
     limit: Option<u64>,
     /// Scratch space: the half-edges around a new vertex.
     around: Vec<EdgeId>,
+    /// Whether new points are rounded to the caller's grid ([`Quality::caller_grid`]) as they
+    /// are made: after the mesh was moved onto it.
+    on_caller_grid: bool,
 }
 
 impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
@@ -138,6 +143,7 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
             tally: Tally::default(),
             limit: None,
             around: Vec::new(),
+            on_caller_grid: false,
         }
     }
 
@@ -153,6 +159,39 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
     pub(super) fn set_angle(&mut self, degrees: f64) {
         self.angle = AngleBound::new(degrees);
         self.encroachment = Encroachment::new(degrees, self.settings.conforming);
+    }
+
+    /// Moves the mesh onto the caller's grid ([`Quality::caller_grid`]) and rounds every later
+    /// new point to it; returns whether the mesh could be moved (else it is left as it is).
+    pub(super) fn move_onto_caller_grid(&mut self) -> bool {
+        let Some(caller) = self.settings.quality.caller_grid else {
+            return true;
+        };
+        let moved = self.cdt.move_onto_grid(caller.grid);
+        self.on_caller_grid = moved;
+        moved
+    }
+
+    /// How much of the triangle beside a boundary subsegment a rounded split point may cut off
+    /// or add ([`splits_faithfully`]): [`BOUNDARY_SLIVER`], or [`GRID_SLIVER`] on the caller's
+    /// grid in a translated frame.
+    fn largest_sliver(&self) -> f64 {
+        if self.on_caller_grid {
+            GRID_SLIVER
+        } else {
+            BOUNDARY_SLIVER
+        }
+    }
+
+    /// The caller's grid once the mesh is on it.
+    fn grid(&self) -> Option<&'q dyn Grid> {
+        let caller = self.settings.quality.caller_grid?;
+        self.on_caller_grid.then_some(caller.grid)
+    }
+
+    /// `p` rounded to the caller's grid once the mesh is on it, else `p`.
+    fn placed(&self, p: Point) -> Point {
+        self.grid().map_or(p, |grid| grid.round(p))
     }
 
     /// A copy of the state, to [`Self::exchange`] with later.
@@ -315,10 +354,14 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
         let (u, v) = (mesh.origin(e), mesh.dest(e));
         let (t, kind) = split_parameter(mesh, &self.kinds, u, v);
         let (pu, pv) = (mesh.point(u), mesh.point(v));
-        let p = [pu[0] + t * (pv[0] - pu[0]), pu[1] + t * (pv[1] - pu[1])];
+        let exact = [pu[0] + t * (pv[0] - pu[0]), pu[1] + t * (pv[1] - pu[1])];
         let floor2 = self.settings.floor2;
         let too_short = |q: Point, r: Point| (q[0] - r[0]).powi(2) + (q[1] - r[1]).powi(2) < floor2;
-        if too_short(p, pu) || too_short(p, pv) || !splits_faithfully::<P>(mesh, e, p) {
+        let p = self.placed(exact);
+        if too_short(p, pu)
+            || too_short(p, pv)
+            || !splits_faithfully::<P>(mesh, e, p, self.largest_sliver())
+        {
             self.unsplittable.insert((u.min(v), u.max(v)));
             self.tally.skipped += 1;
             return false;
@@ -378,6 +421,7 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
         let corners = self.mesh().triangle(t);
         let points = corners.map(|v| self.mesh().point(v));
         let (x, xi, eta) = self.angle.split_point(points);
+        let x = self.placed(x);
         if !(x[0].is_finite() && x[1].is_finite()) {
             return;
         }

@@ -12,6 +12,10 @@ pub struct Report {
     pub steiner_points: u64,
     /// What the caller should know about the mesh, in the order it happened.
     pub warnings: Vec<Warning>,
+    /// The refined mesh could not be moved onto the caller's grid ([`super::Quality::caller_grid`])
+    /// without changing its shape (it is left in the engine's frame): the caller should refine
+    /// in its own frame instead.
+    pub off_grid: bool,
 }
 
 /// Why a refined mesh may fall short of what was asked. Every mesh is valid all the same.

@@ -201,18 +201,3 @@ fn crossing_point(a: [Point; 2], b: [Point; 2]) -> Option<Point> {
     ((0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&t))
         .then(|| [a[0][0] + s * d[0], a[0][1] + s * d[1]])
 }
-
-/// The squared sine of the smallest angle of triangle (a, b, c), which grows with that angle
-/// (at most 60°): twice the area over the product of the two longest edges is the sine of the
-/// angle between them, the one opposite the shortest edge.
-pub(super) fn min_angle_sin2([a, b, c]: [Point; 3]) -> f64 {
-    let sq = |p: Point, q: Point| (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2);
-    let (ab, bc, ca) = (sq(a, b), sq(b, c), sq(c, a));
-    let cross = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-    let longest_two = ab * bc * ca / ab.min(bc).min(ca);
-    if longest_two > 0.0 {
-        cross * cross / longest_two
-    } else {
-        0.0
-    }
-}

@@ -1,0 +1,53 @@
+//! Vertices moved onto a grid: the points that the caller's coordinates can hold.
+//!
+//! The engine may mesh in a frame of its own (translated to a local origin and scaled, see
+//! `crate::scaling`), where a new vertex can have coordinates that the caller's doubles cannot
+//! hold; given back rounded, it would make the caller's mesh another one than the engine
+//! checked. So before the outputs every vertex is moved, in the engine's frame, to the point
+//! the caller will receive ([`Grid::round`]), the mesh is checked with those coordinates and
+//! made Delaunay again by Lawson flips: what the caller gets is exactly what the engine
+//! checked. Rounding moves a vertex by half a unit in the last place of the caller's
+//! coordinates; the move is refused only where it would invert a triangle (vertices closer
+//! than the caller's rounding), and the shapes it spoils are the refinement's to mend.
+
+use super::*;
+use crate::geometry::Grid;
+use crate::mesh::OUTSIDE;
+
+impl<P: Predicates> Constrainer<P> {
+    /// Moves every vertex `v` to `grid.round(v)` (see the module documentation) and restores
+    /// the constrained Delaunay property by flips; returns whether it did. It does not, and
+    /// leaves the mesh as it is, when a domain triangle (not a ghost, not tagged outside)
+    /// would invert or flatten.
+    pub fn move_onto_grid(&mut self, grid: &dyn Grid) -> bool {
+        let mesh = self.inserter.mesh();
+        let on_grid: Vec<Point> = mesh.points().iter().map(|&p| grid.round(p)).collect();
+        let moved: Vec<VertexId> = (0..on_grid.len())
+            .filter(|&i| on_grid[i] != mesh.points()[i])
+            .map(|i| VertexId::new(i as u32))
+            .collect();
+        if moved.is_empty() {
+            return true;
+        }
+        let at = |v: VertexId| on_grid[v.index()];
+        for t in mesh.triangles() {
+            let corners = mesh.triangle(t);
+            if corners.contains(&GHOST)
+                || (mesh.tracks_tags() && mesh.tag(t) == OUTSIDE)
+                || corners.iter().all(|&v| at(v) == mesh.point(v))
+            {
+                continue;
+            }
+            let [a, b, c] = corners.map(at);
+            if P::orient2d(a, b, c) <= 0.0 {
+                return false;
+            }
+        }
+        self.inserter.mesh_mut().replace_points(on_grid);
+        // Lawson flips (no segment is flipped): exactly Delaunay again with the moved vertices.
+        for v in moved {
+            self.settle(v);
+        }
+        true
+    }
+}
