@@ -2,7 +2,8 @@
 //! on the benchmarks' inputs, without the reference library and without the benchmarks'
 //! interleaving. `cargo run --release --example profile -- cdt 100000 3` (mode `cdt`, `hole`
 //! (the square with a hole of benches/refine.rs; size: the circle's segments, 256 there) or
-//! `delaunay`, size, repetitions; `SWITCHES` overrides the switches). Prints each run's times.
+//! `delaunay`, or `grid` (a square grid of about that many points: in-circle ties everywhere),
+//! size, repetitions; `SWITCHES` overrides the switches). Prints each run's times.
 //! Mode `files` profiles the command-line program's file work on the Delaunay input in memory:
 //! writing its `.node` text, reading it back, and writing the `.ele` of its triangulation. Mode
 //! `order` times the default insertion order (Hilbert curve in random rounds) of those points,
@@ -76,6 +77,15 @@ fn main() {
             }
             holes.extend([0.5, 0.5]);
             "pq30a0.0000014Q"
+        }
+        "grid" => {
+            // A square grid of about `n` points: cocircular everywhere, so every cell's diagonal
+            // is a tie of the in-circle test, decided by the perturbation.
+            let side = (n as f64).sqrt().ceil() as usize;
+            for k in 0..side * side {
+                points.extend_from_slice(&[(k % side) as f64, (k / side) as f64]);
+            }
+            "Qz"
         }
         _ => {
             let mut rng = SplitMix64::new(0x5EED_0001);

@@ -300,7 +300,7 @@ impl Mesh {
         // SAFETY: only finite corners are read, vertices by the contract.
         let point = |v: VertexId| unsafe { self.read_point::<CHECKED>(v) };
         if a != GHOST && b != GHOST && c != GHOST && d != GHOST {
-            P::incircle(point(b), point(a), point(d), point(c)) > 0.0
+            P::incircle_positive(point(b), point(a), point(d), point(c))
         } else if ghosts == Ghosts::Fixed || c == GHOST {
             false
         } else if a == GHOST || b == GHOST {

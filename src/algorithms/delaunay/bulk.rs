@@ -8,8 +8,9 @@
 //! turn ([`Mesh::legalize_around_unchecked`]) rather than from a stack; the walk carries the
 //! points of the edge it crossed into the next triangle.
 //!
-//! In general position the result is the mesh [`super::Inserter`] builds (the Delaunay
-//! triangulation is unique); with cocircular points it may choose other diagonals.
+//! The result is the mesh [`super::Inserter`] builds, cocircular points included: every flip
+//! asks [`Predicates::incircle_positive`], whose tie rule depends on the points alone, so the
+//! Delaunay triangulation is unique.
 
 use super::{location_in_triangle, Location};
 use crate::geometry::{Point, Predicates};

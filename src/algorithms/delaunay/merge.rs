@@ -379,7 +379,7 @@ impl<P: Predicates> Merger<P> {
             let take_right = match (left_ok, right_ok) {
                 (true, true) => {
                     let (lc, rc) = (left_candidate.unwrap(), right_candidate.unwrap());
-                    P::incircle(self.pt(l), self.pt(r), self.pt(lc), self.pt(rc)) > 0.0
+                    P::incircle_positive(self.pt(l), self.pt(r), self.pt(lc), self.pt(rc))
                 }
                 (false, true) => true,
                 (true, false) => false,

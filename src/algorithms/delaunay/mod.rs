@@ -8,8 +8,10 @@
 //!
 //! The default order is multiscale: random rounds growing eightfold, each along a Hilbert curve
 //! ([`order::multiscale_order`]); `i` uses rounds that double, a biased randomized insertion
-//! order ([`order::brio_order`]). Both give the same triangulation for points in general
-//! position.
+//! order ([`order::brio_order`]). Both give the same triangulation, as does the two-core merge
+//! ([`merge`]), for any points: every in-circle decision is [`Predicates::incircle_positive`],
+//! exact, with ties (cocircular points) broken by a symbolic perturbation that depends only on
+//! the points' coordinates, so the Delaunay triangulation is unique.
 
 mod bulk;
 pub mod merge;
@@ -286,7 +288,7 @@ impl<P: Predicates> Inserter<P> {
         } else if c == GHOST {
             P::orient2d(m.point(a), m.point(b), p) > 0.0
         } else {
-            P::incircle(m.point(a), m.point(b), m.point(c), p) > 0.0
+            P::incircle_positive(m.point(a), m.point(b), m.point(c), p)
         }
     }
 
