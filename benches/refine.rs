@@ -11,38 +11,34 @@
 //! meshes are checked to be valid meshes of the domain (its area, every boundary edge a
 //! segment).
 //!
-//! Then a table (issue 11) of Triangle's own example files (every `.poly`, `.node` and `.ele` of
-//! the PyPI `triangle` package's data directory, `common::examples`) with `q`, `q30`, `q33` and
-//! `q34` (`p…` for `.poly` files, `rp…` for meshes): for each, our and Triangle's triangle
-//! count, smallest angle and median time. Triangle may loop (above 28.6°, or on Greenland's
-//! vertices): each case is first tried with Debian's `triangle` program under a time limit, and
-//! Triangle's column says so when it does not finish.
+//! Then the differential table of issue 24 (`table.rs`): every example file of the PyPI
+//! `triangle` package's data directory (`common::examples`; `TRIANGLE_DATA_DIR`, else the
+//! `.venv`'s) with the switch sets of its kind (`q q30 q33 q34` on point sets; `pq pq30 pq33 pq34
+//! pqY pqYY pqD pq30a<x>` on `.poly` files; `rpq30 rpq34 rq34` on meshes with a `.poly`, `rq30
+//! rq34` on the others): our and Triangle's triangle count, ratio, smallest angle, largest area
+//! and time, Triangle first run as a program under a 10 s limit (DNF), then a summary (count ≤
+//! 1.0× Triangle's, geometric mean of the ratios, smallest angle ≥ Triangle's, `Y`/`YY` keeping
+//! every input angle that Triangle keeps, the worst cases).
 //!
-//! Run with `cargo bench --bench refine` (`REPS=…` for more or fewer repetitions). Under
+//! Run with `cargo bench --bench refine` (`REPS=…` for more or fewer repetitions of the speed
+//! benchmarks). `REFINE_TABLE=only` runs the table alone, `REFINE_TABLE=smoke` the table on
+//! `face.poly` with `pq30` and `pqY` alone, `REFINE_TABLE=skip` the speed benchmarks alone. Under
 //! `cargo test --all-targets` it runs as a smoke test (a coarser area bound, a 200-vertex star,
-//! one repetition, the table for `face.poly` alone).
+//! one repetition, the smoke table).
 
 #[path = "../tests/common/mod.rs"]
 mod common;
 
-use std::path::Path;
-use std::process::Command;
-use std::time::Duration;
+#[path = "refine/table.rs"]
+mod table;
 
-use common::examples::{data_dir, example_files, ExampleFile, Kind};
 use common::pslg::{square_with_hole, star_polygon_pslg, Pslg};
 use common::pslg_checks::MeshView;
 use common::quality::smallest_angle;
-use common::timing::{
-    benchmarking, number_from_env, seconds, time_interleaved, timed_call, Interleaved, Library,
-    Times,
-};
+use common::timing::{benchmarking, number_from_env, time_interleaved, Interleaved};
 use common::Triangulation;
 
 const STAR_SEED: u64 = 0x5EED_0C07;
-
-/// How long Debian's `triangle` program may take on an example before it counts as looping.
-const TRIANGLE_TIME_LIMIT: Duration = Duration::from_secs(10);
 
 /// Triangles and smallest angle of a valid mesh of `pslg`'s domain (panics otherwise).
 fn measure(pslg: &Pslg, switches: &str, who: &str, out: &Triangulation) -> (usize, f64) {
@@ -81,6 +77,16 @@ fn bench(pslg: &Pslg, switches: &str, reps: usize) {
 
 fn main() {
     let full = benchmarking();
+    let mode = std::env::var("REFINE_TABLE").unwrap_or_default();
+    let scope = if full && mode != "smoke" {
+        table::Scope::Full
+    } else {
+        table::Scope::Smoke
+    };
+    if mode == "only" || mode == "smoke" {
+        table::run(scope);
+        return;
+    }
     let reps = if full {
         number_from_env("REPS", 5).max(1)
     } else {
@@ -109,90 +115,7 @@ fn main() {
     for &n in stars {
         bench(&star_polygon_pslg(n, STAR_SEED), "pq20Q", reps);
     }
-    example_table(full, reps);
-}
-
-/// Whether Debian's `triangle` program finishes `file` (with its companions, in `dir`) with
-/// `switches` within [`TRIANGLE_TIME_LIMIT`]: the library call cannot be interrupted. Runs in a
-/// scratch copy of the data directory (the program writes its output next to its input).
-fn triangle_finishes(scratch: &Path, file: &str, switches: &str) -> bool {
-    let status = Command::new("timeout")
-        .arg(TRIANGLE_TIME_LIMIT.as_secs().to_string())
-        .arg("triangle")
-        .arg(format!("-{switches}NEPQ"))
-        .arg(file)
-        .current_dir(scratch)
-        .status();
-    status.is_ok_and(|s| s.success())
-}
-
-/// Median times of `reps` calls of `library`, and its last mesh's triangle count and smallest
-/// angle.
-fn measure_example(library: Library, switches: &str, file: &ExampleFile, reps: usize) -> String {
-    let mut samples = Vec::new();
-    let mut last = None;
-    for _ in 0..reps {
-        let (times, mesh) = timed_call(library, switches, &file.input);
-        samples.push(times);
-        last = Some(mesh);
+    if mode != "skip" {
+        table::run(scope);
     }
-    let mesh = last.expect("one repetition");
-    let view = MeshView::of(&mesh).unwrap_or_else(|e| panic!("{}, \"{switches}\": {e}", file.name));
-    format!(
-        "{:>7} | {:>8.4}° | {:>9}",
-        view.triangles.len(),
-        smallest_angle(&view),
-        seconds(Times::median(&samples).wall)
-    )
-}
-
-/// The table of Triangle's example files with `q`, `q30`, `q33`, `q34`.
-fn example_table(full: bool, reps: usize) {
-    let dir = data_dir();
-    let reference = common::reference();
-    let scratch = std::env::temp_dir().join(format!("triangle-rs-bench-{}", std::process::id()));
-    std::fs::create_dir_all(&scratch).expect("a scratch directory");
-    for entry in std::fs::read_dir(&dir)
-        .expect("the data directory")
-        .flatten()
-    {
-        let _ = std::fs::copy(entry.path(), scratch.join(entry.file_name()));
-    }
-    println!("Triangle's example files ({}):", dir.display());
-    println!(
-        "| file | switches | ours: triangles | min angle | time | Triangle: triangles | min angle | time |"
-    );
-    println!("|---|---|---:|---:|---:|---:|---:|---:|");
-    for file in example_files(&dir) {
-        if !full && file.name != "face.poly" {
-            continue;
-        }
-        let prefix = match file.kind {
-            Kind::Poly => "p",
-            Kind::Points => "",
-            Kind::Mesh { .. } if file.input.segments.is_empty() => "r",
-            Kind::Mesh { .. } => "rp",
-        };
-        for angle in ["q", "q30", "q33", "q34"] {
-            let switches = format!("{prefix}{angle}");
-            let ours = measure_example(Library::Ours, &format!("{switches}zQ"), &file, reps);
-            let theirs = match reference {
-                Some(triangle) if triangle_finishes(&scratch, &file.name, &switches) => {
-                    measure_example(
-                        Library::Triangle(triangle),
-                        &format!("{switches}zQ"),
-                        &file,
-                        reps,
-                    )
-                }
-                Some(_) => format!(
-                    "does not finish in {} s | | ",
-                    TRIANGLE_TIME_LIMIT.as_secs()
-                ),
-                None => "not installed | | ".into(),
-            };
-            println!("| {} | {switches} | {ours} | {theirs} |", file.name);
-        }
-    }
-    let _ = std::fs::remove_dir_all(&scratch);
 }
