@@ -418,6 +418,49 @@ pub fn segment_chains(
     Ok(chains)
 }
 
+/// Every new vertex (at no input vertex's place) on the chain of an input segment lies on that
+/// segment to rounding: its distance from the segment's line (exact orientation over the length)
+/// is at most `ulps` units in the last place of the largest coordinate magnitude of the segment's
+/// ends and the vertex. A crossing vertex, on two chains, is so checked on both segments.
+/// Returns the largest distance found, in those units.
+pub fn check_new_vertices_on_chains(
+    input: &MeshInput,
+    mesh: &MeshView<'_>,
+    chains: &BTreeMap<usize, Vec<usize>>,
+    ulps: f64,
+) -> Result<f64, String> {
+    let input_places: HashSet<[u64; 2]> = input.points.iter().map(|&p| bits(p)).collect();
+    let mut worst = 0.0f64;
+    for (&i, chain) in chains {
+        let [a, b] = input.segments[i].map(|v| v as usize);
+        let (pa, pb) = (input.points[a], input.points[b]);
+        let length = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
+        for &v in chain {
+            let p = mesh.points[v];
+            if input_places.contains(&bits(p)) {
+                continue;
+            }
+            let magnitude = [pa, pb, p]
+                .iter()
+                .flat_map(|q| q.iter())
+                .fold(0.0f64, |m, x| m.max(x.abs()));
+            // Unscaled (coordinates of ordinary magnitude): `robust`'s adaptive value is the
+            // determinant to within its last bits.
+            let c = |q: Point| robust::Coord { x: q[0], y: q[1] };
+            let distance = robust::orient2d(c(pa), c(pb), c(p)).abs() / length;
+            let in_ulps = distance / (f64::EPSILON * magnitude);
+            worst = worst.max(in_ulps);
+            if in_ulps > ulps {
+                return Err(format!(
+                    "new vertex {v} {p:?} on the chain of input segment {i} {:?} ({pa:?} to {pb:?}) is {distance:e} from it: {in_ulps:.1} ulps of {magnitude:e}",
+                    input.segments[i]
+                ));
+            }
+        }
+    }
+    Ok(worst)
+}
+
 /// Triangle's marker of the edge between output vertices `a` and `b` (zero-based): the first
 /// non-zero marker of the input segments whose chains contain it; else 1 on the mesh boundary;
 /// else 0 (`chains` as from [`segment_chains`]).
