@@ -43,6 +43,11 @@ const TIMEOUT: Duration = Duration::from_secs(2);
 /// segments through them.
 const ULPS: f64 = 8.0;
 
+/// Ours merges a crossing within 10^-12 of the lengths involved into the vertex there
+/// (`SNAP_RELATIVE` of src/algorithms/constrain): such a merged crossing lies within that of
+/// each segment through it.
+const MERGED_RELATIVE: f64 = 1.001e-12;
+
 /// One input: zero-based segments.
 struct Case {
     name: String,
@@ -412,7 +417,7 @@ fn check_ours<'a>(input: &MeshInput, out: &'a Triangulation) -> Result<MeshView<
     if bypasses_a_vertex(input, &mesh) {
         return Err("an output segment passes by an input vertex lying on it".into());
     }
-    check_new_vertices_on_chains(input, &mesh, &chains, ULPS)?;
+    check_new_vertices_on_chains(input, &mesh, &chains, ULPS, MERGED_RELATIVE)?;
     check_constrained_delaunay(&mesh)?;
     Ok(mesh)
 }
@@ -499,9 +504,95 @@ fn dump(case: &Case, ours: &MeshView<'_>, theirs: &MeshView<'_>) {
     }
 }
 
+/// Triangle's segment passes by an input vertex within rounding of it (10^-12 of its length);
+/// ours goes through the vertex (src/algorithms/constrain: `on_line`).
+const PASSES_BY_A_VERTEX: &str = "Triangle passes by a vertex within rounding of a segment";
+
+/// Triangle makes a crossing vertex within rounding (10^-12 of the extent) of an input vertex;
+/// ours merges the crossing into the vertex (`SNAP_RELATIVE`).
+const CROSSING_AT_A_VERTEX_KEPT_APART: &str =
+    "Triangle keeps a crossing within rounding of an input vertex apart from it";
+
+/// Triangle makes several crossing vertices within rounding of one another (segments through
+/// one point); ours merges them into one.
+const CROSSINGS_KEPT_APART: &str = "Triangle keeps crossings within rounding of one another apart";
+
+/// Where vertices count as at one place: relative to the input's extent (ours merges within
+/// 10^-12 of the lengths involved, which are at most the extent times √2).
+const MERGED_PLACE: f64 = 2e-12;
+
+/// The mesh vertices of `view` grouped by place: each group a vertex and those within
+/// `tolerance` of it (single linkage).
+fn places(view: &MeshView<'_>, tolerance: f64) -> Vec<Vec<usize>> {
+    let vertices: Vec<usize> = (0..view.points.len()).filter(|&v| view.in_mesh[v]).collect();
+    let mut group: Vec<usize> = (0..vertices.len()).collect();
+    fn root(group: &mut [usize], mut x: usize) -> usize {
+        while group[x] != x {
+            group[x] = group[group[x]];
+            x = group[x];
+        }
+        x
+    }
+    for x in 0..vertices.len() {
+        for y in x + 1..vertices.len() {
+            let (p, q) = (view.points[vertices[x]], view.points[vertices[y]]);
+            if (p[0] - q[0]).abs().max((p[1] - q[1]).abs()) <= tolerance {
+                let (rx, ry) = (root(&mut group, x), root(&mut group, y));
+                group[rx] = ry;
+            }
+        }
+    }
+    let mut groups: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
+    for x in 0..vertices.len() {
+        let r = root(&mut group, x);
+        groups.entry(r).or_default().push(vertices[x]);
+    }
+    groups.into_values().collect()
+}
+
 /// The named rule that explains why ours and Triangle's counts differ, if one does.
-fn explain(_input: &MeshInput, _ours: &MeshView<'_>, _theirs: &MeshView<'_>) -> Option<&'static str> {
-    None
+fn explain(input: &MeshInput, ours: &MeshView<'_>, theirs: &MeshView<'_>) -> Option<&'static str> {
+    if bypasses_a_vertex(input, theirs) && !bypasses_a_vertex(input, ours) {
+        return Some(PASSES_BY_A_VERTEX);
+    }
+    // Vertices merged by place: ours and Triangle's must then be at the same places, Triangle's
+    // with more vertices at some.
+    let extent = input
+        .points
+        .iter()
+        .flat_map(|p| p.iter())
+        .fold(0.0f64, |m, x| m.max(x.abs()));
+    let tolerance = MERGED_PLACE * extent;
+    let (ours_places, theirs_places) = (places(ours, tolerance), places(theirs, tolerance));
+    if ours_places.len() != theirs_places.len() {
+        return None;
+    }
+    let input_places: std::collections::HashSet<[u64; 2]> =
+        input.points.iter().map(|p| p.map(f64::to_bits)).collect();
+    let mut at_input_vertex = false;
+    let mut taken = vec![false; theirs_places.len()];
+    for group in &ours_places {
+        let p = ours.points[group[0]];
+        let near = |q: Point| (p[0] - q[0]).abs().max((p[1] - q[1]).abs()) <= 2.0 * tolerance;
+        let found = (0..theirs_places.len())
+            .find(|&k| !taken[k] && theirs_places[k].iter().any(|&w| near(theirs.points[w])))?;
+        taken[found] = true;
+        let theirs_group = &theirs_places[found];
+        if theirs_group.len() < group.len() {
+            return None;
+        }
+        if theirs_group.len() > group.len() {
+            let input_here = theirs_group
+                .iter()
+                .any(|&w| input_places.contains(&theirs.points[w].map(f64::to_bits)));
+            at_input_vertex |= input_here;
+        }
+    }
+    Some(if at_input_vertex {
+        CROSSING_AT_A_VERTEX_KEPT_APART
+    } else {
+        CROSSINGS_KEPT_APART
+    })
 }
 
 /// Runs every case of a family with every switch string; panics with every failure.
