@@ -279,7 +279,7 @@ fn one_point_case(seed: u64) -> Case {
 
 /// What Triangle gave on one case.
 enum Reference {
-    Finished(Triangulation),
+    Finished(Box<Triangulation>),
     /// It exited with an error, crashed, timed out or wrote unreadable files.
     DidNotFinish(String),
 }
@@ -367,7 +367,7 @@ impl Running {
             return Reference::DidNotFinish(format!("{status}: {said}"));
         }
         match read_outputs(&self.dir.0) {
-            Ok(t) => Reference::Finished(t),
+            Ok(t) => Reference::Finished(Box::new(t)),
             Err(e) => Reference::DidNotFinish(format!("unreadable output: {e}")),
         }
     }
@@ -453,7 +453,7 @@ fn run_case(case: &Case, switches: &str, reference: Running) -> Result<Outcome, 
     let out = ours_on(case, switches).map_err(context)?;
     let ours = check_ours(&case.input, &out).map_err(context)?;
     let theirs = match reference.finish() {
-        Reference::Finished(t) => t,
+        Reference::Finished(t) => *t,
         Reference::DidNotFinish(why) => return Ok(Outcome::DidNotFinish(why)),
     };
     let theirs_view = match MeshView::of(&theirs) {
@@ -558,9 +558,9 @@ fn places(view: &MeshView<'_>, tolerance: f64) -> Vec<Vec<usize>> {
         }
     }
     let mut groups: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
-    for x in 0..vertices.len() {
+    for (x, &v) in vertices.iter().enumerate() {
         let r = root(&mut group, x);
-        groups.entry(r).or_default().push(vertices[x]);
+        groups.entry(r).or_default().push(v);
     }
     groups.into_values().collect()
 }
