@@ -418,6 +418,81 @@ pub fn segment_chains(
     Ok(chains)
 }
 
+/// Every new vertex (at no input vertex's place) on the chain of an input segment lies on that
+/// segment to rounding: its distance from the segment's line (`robust`'s orientation over the
+/// length) is at most `ulps` units in the last place of the largest coordinate magnitude of the
+/// segment's ends and the vertex, plus the chain's bend: the largest distance from the line of
+/// the chain's anchors, the input vertices within rounding of the segment that it passes through
+/// and the new vertices on three or more chains (a crossing the engine merged others into), the
+/// pieces after which are straight from there. A vertex on three or more chains is such a merged
+/// crossing: it lies within `merged_relative` times the longest input segment of each segment
+/// through it (plus the bend). A crossing vertex, on two chains, is checked on both segments.
+/// Returns the largest distance of a vertex on two chains beyond its chain's bend, in ulps.
+pub fn check_new_vertices_on_chains(
+    input: &MeshInput,
+    mesh: &MeshView<'_>,
+    chains: &BTreeMap<usize, Vec<usize>>,
+    ulps: f64,
+    merged_relative: f64,
+) -> Result<f64, String> {
+    let input_places: HashSet<[u64; 2]> = input.points.iter().map(|&p| bits(p)).collect();
+    let mut on_chains: HashMap<usize, usize> = HashMap::new();
+    for chain in chains.values() {
+        for &v in chain {
+            *on_chains.entry(v).or_default() += 1;
+        }
+    }
+    let longest = chains
+        .keys()
+        .map(|&i| {
+            let [a, b] = input.segments[i].map(|v| input.points[v as usize]);
+            (b[0] - a[0]).hypot(b[1] - a[1])
+        })
+        .fold(0.0f64, f64::max);
+    let mut worst = 0.0f64;
+    for (&i, chain) in chains {
+        let [a, b] = input.segments[i].map(|v| v as usize);
+        let (pa, pb) = (input.points[a], input.points[b]);
+        let length = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
+        // Unscaled (coordinates of ordinary magnitude): `robust`'s adaptive value is the
+        // determinant to within its last bits.
+        let c = |q: Point| robust::Coord { x: q[0], y: q[1] };
+        let distance = |p: Point| robust::orient2d(c(pa), c(pb), c(p)).abs() / length;
+        let is_new = |v: usize| !input_places.contains(&bits(mesh.points[v]));
+        let bend = chain
+            .iter()
+            .filter(|&&v| !is_new(v) || on_chains[&v] >= 3)
+            .map(|&v| distance(mesh.points[v]))
+            .fold(0.0f64, f64::max);
+        for &v in chain.iter().filter(|&&v| is_new(v)) {
+            let p = mesh.points[v];
+            let magnitude = [pa, pb, p]
+                .iter()
+                .flat_map(|q| q.iter())
+                .fold(0.0f64, |m, x| m.max(x.abs()));
+            let ulp = f64::EPSILON * magnitude;
+            let (merged, allowed) = if on_chains[&v] >= 3 {
+                (true, merged_relative * longest + ulps * ulp)
+            } else {
+                (false, bend + ulps * ulp)
+            };
+            let d = distance(p);
+            if !merged {
+                worst = worst.max((d - bend).max(0.0) / ulp);
+            }
+            if d > allowed {
+                return Err(format!(
+                    "new vertex {v} {p:?} on {} chains, on that of input segment {i} {:?} ({pa:?} to {pb:?}), is {d:e} from it: {:.1} ulps of {magnitude:e}, the chain's bend {bend:e}",
+                    on_chains[&v],
+                    input.segments[i],
+                    d / ulp
+                ));
+            }
+        }
+    }
+    Ok(worst)
+}
+
 /// Triangle's marker of the edge between output vertices `a` and `b` (zero-based): the first
 /// non-zero marker of the input segments whose chains contain it; else 1 on the mesh boundary;
 /// else 0 (`chains` as from [`segment_chains`]).
