@@ -128,8 +128,9 @@ pub enum Phase {
 }
 
 /// What a call reports of its progress: the phase, the work done in it, and an estimate of the
-/// phase's total (0 when unknown). For refinement, the work is the vertices inserted, and the
-/// estimate those plus the bad triangles and encroached segments waiting: it grows as
+/// phase's total (0 when unknown). For refinement, the work is the vertices inserted (above
+/// 28.6°, in all the runs it tries, including meshes it then discards), and the estimate those
+/// plus the bad triangles and encroached segments waiting: it grows as
 /// refinement finds more work, and meets the count at the end.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Progress {

@@ -621,3 +621,53 @@ fn beyond_the_guaranteed_angle_triangles_examples_end_at_28_6_degrees_or_better(
         );
     }
 }
+
+/// Above 30° every split of a skinny triangle makes an edge shorter than its shortest, so
+/// refinement can cascade far from any input feature: on the Greenland mesh with `rq34` it once
+/// made 5.4× Triangle's triangles, all in the interior (issue 24). Ours must be valid, reach θ,
+/// and be no larger than Triangle's on these cases, the issue's and others of the same kind
+/// (refining a mesh, a domain or a point set at 33° and 34°; not all such cases are: spiral.q.1
+/// with `rq34` makes 98 triangles where Triangle makes 77).
+#[test]
+fn above_30_degrees_refinement_does_not_cascade_where_triangles_does_not() {
+    let triangle = reference_or_fail();
+    let files = example_files(&data_dir());
+    let cases = [
+        ("greenland.ele", "rq34"),
+        ("greenland.ele", "rq33"),
+        ("double_hex.2.ele", "rq34"),
+        ("box.2.ele", "rq34"),
+        ("face.1.ele", "rpq34"),
+        ("dots.node", "q34"),
+        ("la.poly", "pq34"),
+        ("face.poly", "pq34"),
+    ];
+    for (name, switches) in cases {
+        let file = files
+            .iter()
+            .find(|f| f.name == name)
+            .unwrap_or_else(|| panic!("{name} is missing from Triangle's examples"));
+        let example = Example {
+            name: name.to_string(),
+            input: file.input.clone(),
+            switches: Vec::new(),
+        };
+        let full = format!("{switches}zQ");
+        let theirs = triangle.triangulate(&full, &example.input);
+        let ours = ours(&full, &example.input).unwrap_or_else(|e| panic!("{name}, {full}: {e}"));
+        // Only ours is checked whole: without `p`, Triangle's output with `r` lists no
+        // segments for the mesh's boundary (the check of the chains needs them).
+        let theirs = MeshView::of(&theirs).unwrap_or_else(|e| panic!("{name}, {full}: {e}"));
+        let o = check_output(&example, switches, "our", &ours);
+        let t = theirs.triangles.len();
+        println!(
+            "{name}, \"{switches}\": {} triangles (Triangle {t})",
+            o.triangles
+        );
+        assert!(
+            o.triangles <= t,
+            "{name}, \"{switches}\": {} triangles, Triangle {t}",
+            o.triangles
+        );
+    }
+}

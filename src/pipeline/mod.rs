@@ -388,11 +388,7 @@ fn run<P: Predicates>(
                 &mut meshed.point_attributes,
                 k,
             );
-            hooks.report(
-                Phase::Refinement,
-                report.steiner_points,
-                report.steiner_points,
-            );
+            hooks.report(Phase::Refinement, report.work, report.work);
             if report.off_grid {
                 return Ok(None); // meshed again in the caller's frame
             }

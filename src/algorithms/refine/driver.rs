@@ -2,7 +2,8 @@
 //! angle with its budgets, cancel and progress polling, and the report with its warnings.
 
 use super::attributes::Attributes;
-use super::refinement::{Refinement, RunEnd, Settings};
+use super::queue::QueueOrder;
+use super::refinement::{Aside, Refinement, RunEnd, Settings};
 use super::report::{Report, Warning};
 use super::{inside, Quality, VertexKind, GUARANTEED_ANGLE};
 use crate::algorithms::constrain::Constrainer;
@@ -14,6 +15,12 @@ use crate::mesh::Mesh;
 /// Above that angle, refinement first runs straight toward it with a budget of this many new
 /// vertices per triangle of the unrefined mesh (plus what the area bound asks for).
 const STRAIGHT_BUDGET_PER_TRIANGLE: u64 = 64;
+/// A straight run that finishes within this many new vertices per triangle of the unrefined
+/// mesh (plus what the area bound asks for) stands without a comparison.
+const PLAIN_STRAIGHT_PER_TRIANGLE: u64 = 4;
+/// A finished straight run with at most this many new vertices is tried in the other order of
+/// the bad triangles too ([`Driver::try_worst_angle_order`]): a few tenths of a second.
+const OTHER_ORDER_TRY: u64 = 1 << 17;
 /// If that is not enough, the straight run may go on to this many new vertices per triangle of
 /// the mesh refined to the guaranteed angle.
 const GUARANTEED_MULTIPLE: u64 = 4;
@@ -75,6 +82,7 @@ pub fn refine<P: Predicates>(
     if from_the_start && !driver.refinement.move_onto_caller_grid() {
         return Report {
             steiner_points: 0,
+            work: 0,
             warnings: Vec::new(),
             off_grid: true,
         };
@@ -116,6 +124,7 @@ pub fn refine<P: Predicates>(
     }
     Report {
         steiner_points: tally.steiner_points,
+        work: driver.refinement.work(),
         warnings,
         off_grid,
     }
@@ -172,42 +181,51 @@ impl<P: Predicates> Driver<'_, '_, P> {
         }
     }
 
-    /// Refinement toward an angle above 28.6°, where it may never end (it can cascade into ever
-    /// smaller triangles near small input angles). Usually it ends, and refining straight toward
-    /// the angle, as Triangle does, gives the best mesh; so that runs first, with a generous
-    /// budget of new vertices. If the budget runs out, the mesh refined to 28.6° (which always
-    /// ends) tells how big a mesh the input needs, and the straight run may go on to a multiple
-    /// of that. Failing that, the 28.6° mesh is refined toward the angle with a small budget and
-    /// whatever that leaves is repaired at 28.6°: the result meets the guaranteed angle, and a
-    /// warning says that it does not meet the asked one.
+    /// Refinement toward an angle above 28.6°, where it may never end: it can cascade into ever
+    /// smaller triangles near small input angles, and, above 30°, anywhere (every split of a
+    /// skinny triangle makes an edge shorter than its shortest; see [`super::queue`]). Usually
+    /// it ends, and refining straight toward the angle, as Triangle does, gives the best mesh;
+    /// so that runs first, with a generous budget of new vertices. A run that finishes with
+    /// few new vertices for the input's size stands. Otherwise the mesh refined to 28.6° (which
+    /// always ends) tells how big a mesh the input needs: the straight run stands, or goes on,
+    /// within a multiple of that. Beyond it the straight run cascaded (measured on Triangle's
+    /// `greenland` mesh with `rq34`: 5.4× Triangle's triangles, all in the interior, shortest
+    /// edge first feeding on its own splits), and the unrefined mesh is refined again straight
+    /// toward the angle in worst-angle order, within the same limit. Failing that, the 28.6°
+    /// mesh is refined toward the angle with a small budget and whatever that leaves is
+    /// repaired at 28.6°: the result meets the guaranteed angle, and a warning says that it does
+    /// not meet the asked one.
     ///
-    /// Coming back to an earlier state: one copy is made, of the unrefined state before the
-    /// straight run (the input's size: when the straight budget runs out, under a hundredth of
-    /// the straight mesh). From then on the two states in play, the straight mesh and the 28.6°
-    /// one, are exchanged by moves ([`Refinement::exchange`]), never copied: at most two refined
-    /// meshes live at once (copying snapshots held three while copying the 28.6° mesh aside),
-    /// and no time goes into copying them. The alternatives cost more: replaying the
-    /// deterministic straight run from the unrefined state instead of keeping its result
-    /// doubles its time whenever the fallback is needed; an undo journal would have to log
-    /// every operation of the mesh, the Delaunay inserter and constrain, and grows with the
-    /// straight run all the same. An exchange empties the queues as restoring a snapshot did and
-    /// the runs come in the same order, so the meshes (and the polls of `cancel` and
-    /// `progress`) are those of copying snapshots.
+    /// Coming back to an earlier state: two copies are made of the unrefined state (the input's
+    /// size, small beside the refined meshes); the refined states in play are exchanged by
+    /// moves ([`Refinement::exchange`]), never copied, so at most two refined meshes live at
+    /// once. Replaying a deterministic run instead of keeping its result would double its time;
+    /// an undo journal would have to log every operation of the mesh, the Delaunay inserter
+    /// and constrain. An exchange empties the queues; the runs come in a fixed order, so the
+    /// meshes (and the polls of `cancel` and `progress`) are deterministic.
     fn refine_beyond_the_guarantee(&mut self, angle: f64) -> Outcome {
         let mut aside = self.refinement.copy_aside(); // the unrefined state
+        let unrefined_triangles = self.inside_triangle_count();
         self.refinement.set_angle(angle);
-        // The budget of the unrefined mesh; lattice points (which replace points the area bounds
-        // would have asked for) do not count against it.
-        let budget = STRAIGHT_BUDGET_PER_TRIANGLE * self.inside_triangle_count()
-            + self.size_estimate()
-            + 1024;
+        // The budgets of the unrefined mesh; lattice points (which replace points the area
+        // bounds would have asked for) do not count against them.
+        let expected = self.size_estimate() + 1024;
+        let budget = STRAIGHT_BUDGET_PER_TRIANGLE * unrefined_triangles + expected;
+        let plain = PLAIN_STRAIGHT_PER_TRIANGLE * unrefined_triangles + expected;
         self.seed();
         let outcome = self.run_within(Some(self.steiner_points() + budget));
-        if outcome != Outcome::RunBudget {
-            return outcome;
-        }
-        // Live: the unrefined state, refined to 28.6°; aside: the straight run's.
+        let straight_finished = match outcome {
+            Outcome::Finished if self.steiner_points() <= plain => {
+                return self.try_worst_angle_order(&mut aside, angle);
+            }
+            Outcome::Finished => true,
+            Outcome::RunBudget => false,
+            _ => return outcome,
+        };
+        // Live: the unrefined state, refined to 28.6°; aside: the straight run's; `unrefined`:
+        // the unrefined state again, for a run in the other order.
         self.refinement.exchange(&mut aside);
+        let mut unrefined = self.refinement.copy_aside();
         self.refinement.set_angle(GUARANTEED_ANGLE);
         self.seed();
         let outcome = self.run_within(None);
@@ -215,11 +233,13 @@ impl<P: Predicates> Driver<'_, '_, P> {
             return outcome; // cancelled, or stopped by `S` or as a runaway
         }
         let guaranteed_triangles = self.inside_triangle_count();
-        let limit = aside.steiner_points().max(self.steiner_points())
-            + GUARANTEED_MULTIPLE * guaranteed_triangles;
-        if aside.steiner_points() < limit {
-            // Live: the straight run's state, going on; aside: the 28.6° mesh.
+        let limit = self.steiner_points() + GUARANTEED_MULTIPLE * guaranteed_triangles;
+        if aside.steiner_points() <= limit {
+            // Live: the straight run's state, standing or going on; aside: the 28.6° mesh.
             self.refinement.exchange(&mut aside);
+            if straight_finished {
+                return Outcome::Finished;
+            }
             self.refinement.set_angle(angle);
             let outcome = self.run_within(Some(limit));
             if outcome != Outcome::RunBudget {
@@ -228,7 +248,20 @@ impl<P: Predicates> Driver<'_, '_, P> {
             self.refinement.exchange(&mut aside);
         }
         drop(aside); // the straight run's state is no longer needed
-                     // Live: the 28.6° mesh, refined toward the angle with a small budget.
+                     // Live: the unrefined state, straight toward the angle, worst angle first; `unrefined`:
+                     // the 28.6° mesh.
+        self.refinement.exchange(&mut unrefined);
+        self.refinement.set_order(QueueOrder::WorstAngle);
+        self.refinement.set_angle(angle);
+        self.seed();
+        let outcome = self.run_within(Some(limit));
+        if outcome != Outcome::RunBudget {
+            return outcome;
+        }
+        self.refinement.exchange(&mut unrefined);
+        self.refinement.set_order(QueueOrder::ShortestEdge);
+        drop(unrefined);
+        // Live: the 28.6° mesh, refined toward the angle with a small budget.
         self.refinement.set_angle(angle);
         let budget =
             self.steiner_points() + UNGUARANTEED_BUDGET_PER_TRIANGLE * guaranteed_triangles + 16;
@@ -243,6 +276,39 @@ impl<P: Predicates> Driver<'_, '_, P> {
             steiner_points: self.steiner_points(),
         });
         outcome
+    }
+
+    /// Above 30° neither order of the bad triangles is the better one on every input (measured
+    /// on Triangle's example files at 33° and 34°: shortest edge first makes up to 1.7× the
+    /// triangles of worst angle first, and worst angle first up to 3.5× those of shortest edge
+    /// first; the smaller of the two, 0.98× Triangle's on geometric mean, where either alone
+    /// is 1.02×). So a finished straight run that was cheap (at most [`OTHER_ORDER_TRY`] new
+    /// vertices) is run again from the unrefined state `aside` in worst-angle order, within as
+    /// many new vertices, and the mesh with fewer triangles stands (the straight one on a
+    /// tie). On large meshes the second run would double the time, and it is not tried.
+    /// Finished, or cancelled during the second run.
+    fn try_worst_angle_order(&mut self, aside: &mut Aside<P>, angle: f64) -> Outcome {
+        let straight_points = self.steiner_points();
+        if straight_points > OTHER_ORDER_TRY {
+            return Outcome::Finished;
+        }
+        let straight_triangles = self.inside_triangle_count();
+        // Live: the unrefined state, in the other order; aside: the straight run's.
+        self.refinement.exchange(aside);
+        self.refinement.set_order(QueueOrder::WorstAngle);
+        self.refinement.set_angle(angle);
+        self.seed();
+        let outcome = self.run_within(Some(self.steiner_points() + straight_points));
+        let better =
+            outcome == Outcome::Finished && self.inside_triangle_count() < straight_triangles;
+        if !better {
+            self.refinement.exchange(aside);
+        }
+        self.refinement.set_order(QueueOrder::ShortestEdge);
+        match outcome {
+            Outcome::Cancelled => Outcome::Cancelled,
+            _ => Outcome::Finished,
+        }
     }
 
     /// Seeds the unrefined domain with lattice points where a fixed area bound governs

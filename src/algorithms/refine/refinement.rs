@@ -11,7 +11,7 @@ use super::driver::Polling;
 use super::encroachment::{
     split_parameter, splits_faithfully, Cavity, Encroachment, BOUNDARY_SLIVER, GRID_SLIVER,
 };
-use super::queue::{BadQueue, BadTriangle};
+use super::queue::{BadQueue, BadTriangle, QueueOrder};
 use super::split_point::AngleBound;
 use super::walk::{walk, Walk};
 use super::{inside, Quality, VertexKind};
@@ -104,10 +104,15 @@ pub(super) struct Refinement<'r, 'q, P: Predicates> {
     /// Subsegments to split, first in first out.
     encroached: VecDeque<Encroached>,
     bad: BadQueue,
+    /// The order of the skinny triangles in `bad`.
+    order: QueueOrder,
     cavity: Cavity,
     /// Subsegments (ends, smaller first) found unsplittable: never tried again.
     unsplittable: HashSet<(VertexId, VertexId)>,
     tally: Tally,
+    /// New vertices made in all runs, of every state (the progress reported: it never goes
+    /// back when an earlier state is taken up again by [`Self::exchange`]).
+    work: u64,
     /// Where the current run stops.
     limit: Option<u64>,
     /// Scratch space: the half-edges around a new vertex.
@@ -138,9 +143,11 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
             polling,
             encroached: VecDeque::new(),
             bad: BadQueue::new(),
+            order: QueueOrder::ShortestEdge,
             cavity: Cavity::default(),
             unsplittable: HashSet::new(),
             tally: Tally::default(),
+            work: 0,
             limit: None,
             around: Vec::new(),
             on_caller_grid: false,
@@ -151,8 +158,19 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
         self.cdt.mesh()
     }
 
+    /// New vertices made in all runs (see the field).
+    pub(super) fn work(&self) -> u64 {
+        self.work
+    }
+
     pub(super) fn tally(&self) -> Tally {
         self.tally
+    }
+
+    /// Sets the order of the skinny triangles in the queue (for the runs that follow: it is
+    /// empty between runs after an [`Self::exchange`], or before the first).
+    pub(super) fn set_order(&mut self, order: QueueOrder) {
+        self.order = order;
     }
 
     /// Sets the angle bound θ (degrees): the bad-angle test, the lens and the off-centre.
@@ -274,7 +292,10 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
     fn should_stop(&mut self) -> bool {
         let done = self.tally.steiner_points;
         let (bad, encroached) = (&self.bad, &self.encroached);
-        if self.polling.poll(done, || bad.len() + encroached.len()) {
+        if self
+            .polling
+            .poll(self.work, || bad.len() + encroached.len())
+        {
             return true;
         }
         self.limit.is_some_and(|limit| done >= limit)
@@ -404,7 +425,14 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
         };
         if bad {
             let bucket = match skinny {
-                Some(shortest) => BadQueue::skinny_bucket(shortest / self.settings.extent2),
+                Some(shortest) => match self.order {
+                    QueueOrder::ShortestEdge => {
+                        BadQueue::skinny_bucket(shortest / self.settings.extent2)
+                    }
+                    QueueOrder::WorstAngle => {
+                        BadQueue::angle_bucket(min_angle_sin2([pa, pb, pc]).sqrt())
+                    }
+                },
                 None => BadQueue::SIZE_BUCKET,
             };
             self.bad.push(BadTriangle {
@@ -521,6 +549,7 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
         let vertex = self.cdt.add_point(p);
         self.kinds.push(kind);
         self.tally.steiner_points += 1;
+        self.work += 1;
         vertex
     }
 

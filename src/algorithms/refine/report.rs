@@ -10,6 +10,8 @@ use super::GUARANTEED_ANGLE;
 pub struct Report {
     /// New vertices made by refinement.
     pub steiner_points: u64,
+    /// New vertices made in all runs, kept or not (the unit of the progress reports).
+    pub work: u64,
     /// What the caller should know about the mesh, in the order it happened.
     pub warnings: Vec<Warning>,
     /// The refined mesh could not be moved onto the caller's grid ([`super::Quality::caller_grid`])
