@@ -691,7 +691,14 @@ fn crossings_at_a_vertex() {
 }
 
 /// Open: on these ours leaves an output segment passing an input vertex within 10^-12 of its
-/// length (at the threshold of `on_line`, lattice spacings 0.001 and 0.1 not exact in binary).
+/// length. Not a threshold effect: the vertex lies 10^-16 of the length off the segment (seed 59:
+/// (0.5, 0.8) off (0.3, 0.6)–(0.9, 1.2), lattice spacing 0.1 not exact in binary), the segment is
+/// a convex hull edge already in the triangulation (the lattice points on y = x + 0.3 bound the
+/// input), and `walk` finds it as an edge (`edge_between`), where `flip_edge_onto_vertex` refuses
+/// to flip a hull edge (no second triangle): the sliver (u, v, w) stays and the segment runs along
+/// u–v past w. Triangle does the same (its segment 2–3 passes both vertices on that line). A fix:
+/// on a hull edge, remove the sliver (w becomes a hull vertex, the area changes by rounding) and
+/// let the chain go through w; or a named rule for a hull edge passing a vertex within rounding.
 const OPEN_AT_A_VERTEX: &[u64] = &[32, 59];
 
 #[test]
