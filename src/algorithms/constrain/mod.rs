@@ -371,10 +371,24 @@ impl<P: Predicates> Constrainer<P> {
             let beside = |pu: Point, pv: Point, pw: Point| {
                 on_line(P::orient2d(pu, pv, pw), pu, pv) && along(pu, pw, pv) && before(pu, pw, pv)
             };
-            return Ok(match self.flip_edge_onto_vertex(e, beside) {
-                Some(w) => Walk::Through(w),
-                None => Walk::Along(e),
-            });
+            if let Some(w) = self.flip_edge_onto_vertex(e, beside) {
+                return Ok(Walk::Through(w));
+            }
+            // A vertex beside the edge that no flip can join to its ends (the quadrilateral is
+            // not convex: slivers along nearly collinear vertices, as lattice points on a line
+            // rounded off it): the segment still goes through it, along the sliver's two other
+            // edges; the edge stays, not a segment.
+            let mesh = self.inserter.mesh();
+            for h in [e, mesh.twin(e)] {
+                if mesh.is_ghost(h.triangle()) {
+                    continue;
+                }
+                let (u, v, w) = (mesh.origin(h), mesh.dest(h), mesh.apex(h));
+                if beside(self.pt(u), self.pt(v), self.pt(w)) {
+                    return Ok(Walk::Through(w));
+                }
+            }
+            return Ok(Walk::Along(e));
         }
         // Find the triangle (a, x, y) around `a` whose wedge holds the direction to `b`. Each
         // wedge's `y` is the next one's `x`: its orientation is carried over.
