@@ -187,3 +187,24 @@ def test_a_worker_killed_mid_run_loses_nothing():
     finally:
         client.close()
         cluster.close()
+
+
+def test_tiles_for_memory_fits_one_tile_in_a_worker():
+    # No cluster needed: the planner is arithmetic on the documented per-point costs.
+    limit = 2 * 2**30
+    tiles = dd.tiles_for_memory(10_000_000, limit, workers=2)
+    points_per_tile = 10_000_000 / tiles * 1.25
+    assert dd._WORKER_BASELINE_BYTES + points_per_tile * dd._BYTES_PER_TILE_POINT <= 0.95 * limit
+    assert dd.tiles_for_memory(10_000_000, limit // 5, workers=2) > tiles
+    assert dd.tiles_for_memory(100, limit, workers=3) == 3  # at least one tile per worker
+    with pytest.raises(ValueError, match="no room"):
+        dd.tiles_for_memory(10_000, 100 * 2**20)
+
+
+def test_memory_per_worker_chooses_the_tile_count(client):
+    points = RNG.random((20_000, 2))
+    limit = int((dd._WORKER_BASELINE_BYTES + 2 * 2**20) / 0.85) + 1  # 2 MB of room: many tiles
+    result = dd.delaunay(points, client, memory_per_worker=limit)
+    assert result.tiles == dd.tiles_for_memory(len(points), limit, 2)
+    assert result.tiles > 4
+    assert_same_as_single_call(points, result)

@@ -45,15 +45,29 @@ import numpy as np
 from .core import TriangulateError, run
 from .triangulateio import TriangulateIO
 
-__all__ = ["DistributedTriangulation", "delaunay", "from_npy_directory", "from_parquet"]
+__all__ = ["DistributedTriangulation", "delaunay", "from_npy_directory", "from_parquet", "tiles_for_memory"]
 
 # Circumdisks are asked for this much larger (relative to the coordinates' magnitude and the
 # radius): far above the rounding of the floating-point centre and radius (some 10^-15 of them).
 _RELATIVE_MARGIN = 1e-9
 # Shewchuk's error bound of the floating-point orientation, (3 + 16ε)ε.
 _ORIENT_BOUND = (3.0 + 16.0 * 2.0**-53) * 2.0**-53
-# Halo width in mean point spacings of the tile.
-_HALO_SPACINGS = 3.0
+# Halo width in mean point spacings of the tile: wide enough that, on uniform points, nearly
+# every circumdisk at the tile's border is covered by round one, so few tiles ask again (3
+# spacings took four rounds on 10^6 points in 9 tiles).
+_HALO_SPACINGS = 8.0
+
+# What one point of a tile costs a worker while its round runs, in bytes (see
+# :func:`tiles_for_memory`): coordinates and global index held (24) and their k-d tree (~24);
+# the merged copy with the halo (24) and the ownership mask; the engine (~85 per vertex); its
+# outputs, two triangles per point with their neighbours as int32 (48) and as int64 (96);
+# circumdisks and masks of the round (~60). Rounded up for numpy's temporaries.
+_BYTES_PER_TILE_POINT = 450
+# A Dask worker process's own resident memory before it holds any data (interpreter, dask,
+# distributed, numpy, scipy and the library): measured 100–130 MB.
+_WORKER_BASELINE_BYTES = 130 * 2**20
+# The nanny kills a worker at 95% of its memory limit: plan below that.
+_USABLE_FRACTION = 0.85
 
 
 # --- Tiling ------------------------------------------------------------------------------
@@ -105,6 +119,39 @@ def _tiling_from_sample(sample: np.ndarray, columns: int, rows: int) -> Tiling:
             ys = sample[:, 1]
         ycuts[c] = np.quantile(ys, np.arange(1, rows) / rows) if rows > 1 else np.empty(0)
     return Tiling(np.asarray(xcuts, dtype=np.float64), ycuts)
+
+
+def tiles_for_memory(
+    n: int,
+    memory_per_worker: int,
+    workers: int = 1,
+    *,
+    baseline: int = _WORKER_BASELINE_BYTES,
+    bytes_per_point: int = _BYTES_PER_TILE_POINT,
+    halo_fraction: float = 0.25,
+) -> int:
+    """The number of tiles for ``n`` points such that one tile's round fits in a worker of
+    ``memory_per_worker`` bytes: the worker's own ``baseline``, then per point of the tile (its
+    own and, ``halo_fraction`` more, its halo) ``bytes_per_point`` for the points, their k-d
+    tree, the engine (~85 bytes per vertex), its outputs and the Python copies. Planned against
+    85% of the limit, since the nanny kills at 95%. At least ``workers`` tiles, so that every
+    worker has work.
+
+    The tiles a worker holds between rounds (~48 bytes per point) and the results (~24 bytes
+    per point) are Dask's managed data: past its ``spill`` threshold Dask writes them to disk, so
+    they do not count here. Raises :class:`ValueError` when the limit does not even hold the
+    baseline.
+    """
+    if n < 0 or workers < 1:
+        raise ValueError(f"need n >= 0 and workers >= 1, got n={n}, workers={workers}")
+    available = _USABLE_FRACTION * memory_per_worker - baseline
+    if available <= bytes_per_point * 64:
+        raise ValueError(
+            f"memory_per_worker={memory_per_worker} bytes leaves no room past a worker's own "
+            f"~{baseline} bytes (planned against {_USABLE_FRACTION:.0%} of the limit)"
+        )
+    points_per_tile = available / (bytes_per_point * (1.0 + halo_fraction))
+    return max(workers, int(np.ceil(n / points_per_tile)))
 
 
 # --- Tasks on the workers (pure functions of their arguments) ------------------------------
@@ -269,7 +316,11 @@ def _answer(tile: tuple, disks: np.ndarray, edges: np.ndarray, scale: float) -> 
         finite = np.isfinite(disks[:, 2])
         if finite.any():
             hits = tree.query_ball_point(disks[finite, :2], disks[finite, 2], return_sorted=False)
-            found.append(np.fromiter((i for h in hits for i in h), dtype=np.int64))
+            # One concatenation of the per-disk lists: a Python generator over them was the
+            # answer's main cost on large tiles.
+            lists = [h for h in hits if h]
+            if lists:
+                found.append(np.concatenate([np.asarray(h, dtype=np.int64) for h in lists]))
     if len(xy) and len(edges):
         for ax, ay, bx, by in edges:
             ex, ey = bx - ax, by - ay
@@ -444,6 +495,7 @@ def delaunay(
     *,
     tiles: Optional[int] = None,
     points_per_tile: int = 1 << 20,
+    memory_per_worker: Optional[int] = None,
     max_rounds: int = 64,
     after_round: Optional[Callable[[int], None]] = None,
     show_progress: bool = False,
@@ -454,7 +506,10 @@ def delaunay(
     ``points``: a dask array (n, 2 + attributes) (attributes are carried, not used), a numpy
     array, a directory of ``.npy`` chunks or a Parquet path. ``client``: a
     ``distributed.Client`` (the current one by default). ``tiles``: how many (about
-    ``n / points_per_tile`` by default, at least one per worker). ``after_round(k)`` is called
+    ``n / points_per_tile`` by default, at least one per worker). ``memory_per_worker``
+    (bytes, e.g. the workers' ``memory_limit``): the tile count is then
+    :func:`tiles_for_memory`'s, so that one tile's round fits (unless ``tiles`` is given).
+    ``after_round(k)`` is called
     after each round (for progress, or tests). Raises :class:`TriangulateError` as the single
     call does (fewer than three points, a NaN or infinite coordinate).
     """
@@ -503,7 +558,12 @@ def delaunay(
 
     # Tiles by the sample's quantiles; each tile's points gathered on one worker.
     workers = max(1, len(client.scheduler_info()["workers"]))
-    count = tiles or max(workers, -(-n // points_per_tile))
+    if tiles:
+        count = tiles
+    elif memory_per_worker is not None:
+        count = tiles_for_memory(n, int(memory_per_worker), workers)
+    else:
+        count = max(workers, -(-n // points_per_tile))
     columns = max(1, int(round(np.sqrt(count))))
     rows = max(1, -(-count // columns))
     tiling = _tiling_from_sample(np.concatenate([s["sample"] for s in filled]), columns, rows)
