@@ -230,16 +230,26 @@ pub fn check_locally_delaunay(mesh: &MeshView<'_>, segments_too: bool) -> Result
 /// (1e-12 of its length) without ending at it: Triangle's segments do so beyond a rounded
 /// crossing point, ours do not.
 pub fn bypasses_a_vertex(input: &MeshInput, mesh: &MeshView<'_>) -> bool {
-    mesh.segments.iter().any(|s| {
-        let (pu, pw) = (mesh.points[s[0]], mesh.points[s[1]]);
-        let d = [pw[0] - pu[0], pw[1] - pu[1]];
-        let length2 = d[0] * d[0] + d[1] * d[1];
-        input.points.iter().any(|&p| {
-            let e = [p[0] - pu[0], p[1] - pu[1]];
-            let along = e[0] * d[0] + e[1] * d[1];
-            let across = e[0] * d[1] - e[1] * d[0];
-            along > 0.0 && along < length2 && across.abs() <= 1e-12 * length2 && p != pu && p != pw
-        })
+    mesh.segments
+        .iter()
+        .any(|&s| bypassed_vertices(input, mesh.points, s).next().is_some())
+}
+
+/// The input vertices that output segment `s` passes by within 10^-12 of its length, strictly
+/// between its endpoints (see [`bypasses_a_vertex`]).
+pub fn bypassed_vertices<'a>(
+    input: &'a MeshInput,
+    points: &[Point],
+    s: [usize; 2],
+) -> impl Iterator<Item = Point> + 'a {
+    let (pu, pw) = (points[s[0]], points[s[1]]);
+    let d = [pw[0] - pu[0], pw[1] - pu[1]];
+    let length2 = d[0] * d[0] + d[1] * d[1];
+    input.points.iter().copied().filter(move |&p| {
+        let e = [p[0] - pu[0], p[1] - pu[1]];
+        let along = e[0] * d[0] + e[1] * d[1];
+        let across = e[0] * d[1] - e[1] * d[0];
+        along > 0.0 && along < length2 && across.abs() <= 1e-12 * length2 && p != pu && p != pw
     })
 }
 
