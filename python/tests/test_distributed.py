@@ -203,7 +203,7 @@ def test_tiles_for_memory_fits_one_tile_in_a_worker():
 
 def test_memory_per_worker_chooses_the_tile_count(client):
     points = RNG.random((20_000, 2))
-    limit = int((dd._WORKER_BASELINE_BYTES + 2 * 2**20) / 0.85) + 1  # 2 MB of room: many tiles
+    limit = int((dd._WORKER_BASELINE_BYTES + 2**20) / 0.85) + 1  # 1 MB of room: many tiles
     result = dd.delaunay(points, client, memory_per_worker=limit)
     assert result.tiles == dd.tiles_for_memory(len(points), limit, 2)
     assert result.tiles > 4
