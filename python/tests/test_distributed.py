@@ -205,6 +205,6 @@ def test_memory_per_worker_chooses_the_tile_count(client):
     points = RNG.random((20_000, 2))
     limit = int((dd._WORKER_BASELINE_BYTES + 2**20) / 0.85) + 1  # 1 MB of room: many tiles
     result = dd.delaunay(points, client, memory_per_worker=limit)
-    assert result.tiles == dd.tiles_for_memory(len(points), limit, 2)
+    assert result.tiles >= dd.tiles_for_memory(len(points), limit, 2)  # a grid of columns x rows
     assert result.tiles > 4
     assert_same_as_single_call(points, result)
