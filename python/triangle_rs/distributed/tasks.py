@@ -1,9 +1,10 @@
 """The tasks that run on the workers: pure functions of their arguments, so that Dask can
 recompute any of them on another worker when one dies.
 
-A tile is a tuple ``(index, xy, grid)``: its points' global indices (int32 below 2^31 points)
-and coordinates, sorted by grid cell, and the grid (:mod:`.grid`) that answers the neighbours'
-disk questions. Imported points are ``(index, xy)``.
+A tile is a tuple ``(index, xy, grid, hull)``: its points' global indices (int32 below 2^31
+points) and coordinates, sorted by grid cell, the grid (:mod:`.grid`) that answers the
+neighbours' disk questions, and the positions of its points' convex hull vertices (for the
+hull-edge questions). Imported points are ``(index, xy)``.
 """
 
 from __future__ import annotations
@@ -86,11 +87,46 @@ def gather_tile(index_dtype: Any, *pieces) -> tuple:
     index = np.concatenate([p[0] for p in pieces]) if pieces else np.empty(0, index_dtype)
     xy = np.concatenate([p[1] for p in pieces]) if pieces else np.empty((0, 2))
     order, grid = grid_order(xy)
-    return index[order], xy[order], grid
+    index, xy = index[order], xy[order]
+    return index, xy, grid, _hull_positions(xy)
+
+
+def _hull_positions(xy: np.ndarray) -> np.ndarray:
+    """The positions of the convex hull's vertices, in floating point (Andrew's monotone chain
+    on the points outside the extremes' octagon, Akl and Toussaint 1978): a hint of which
+    points to send beyond a hull edge, never a decision, so rounding may miss or add one."""
+    if len(xy) < 3:
+        return np.arange(len(xy))
+    x, y = xy[:, 0], xy[:, 1]
+    extremes = np.unique([f(v) for f in (np.argmin, np.argmax) for v in (x, y, x + y, x - y)])
+    ring = xy[extremes]
+    centre = ring.mean(axis=0)
+    angle = np.arctan2(ring[:, 1] - centre[1], ring[:, 0] - centre[0])
+    ring = ring[np.argsort(angle)]
+    # A point strictly inside the octagon (left of all its edges, counter-clockwise) is no
+    # hull vertex.
+    outside = np.zeros(len(xy), dtype=bool)
+    for k in range(len(ring)):
+        a, b = ring[k], ring[(k + 1) % len(ring)]
+        outside |= (b[0] - a[0]) * (y - a[1]) - (b[1] - a[1]) * (x - a[0]) <= 0
+    candidates = np.flatnonzero(outside)
+    candidates = candidates[np.lexsort((y[candidates], x[candidates]))]
+    hull: list = []
+    for sweep in (candidates, candidates[::-1]):
+        start = len(hull)
+        for p in sweep.tolist():
+            while len(hull) - start >= 2:
+                o, a = hull[-2], hull[-1]
+                if (x[a] - x[o]) * (y[p] - y[o]) - (y[a] - y[o]) * (x[p] - x[o]) > 0:
+                    break
+                hull.pop()
+            hull.append(p)
+        hull.pop()
+    return np.unique(np.array(hull, dtype=np.int64))
 
 
 def tile_stats(tile: tuple) -> dict:
-    index, xy, _ = tile
+    index, xy = tile[0], tile[1]
     if len(xy) == 0:
         return {"count": 0, "bounds": None}
     return {"count": len(xy), "bounds": np.array([*xy.min(axis=0), *xy.max(axis=0)])}
@@ -98,7 +134,7 @@ def tile_stats(tile: tuple) -> dict:
 
 def in_rectangle(tile: tuple, rectangle: np.ndarray) -> tuple:
     """The tile's points in the closed rectangle ``[xlo, ylo, xhi, yhi]``."""
-    index, xy, _ = tile
+    index, xy = tile[0], tile[1]
     inside = (
         (xy[:, 0] >= rectangle[0]) & (xy[:, 0] <= rectangle[2]) & (xy[:, 1] >= rectangle[1]) & (xy[:, 1] <= rectangle[3])
     )
@@ -211,8 +247,10 @@ def tile_round(tile: tuple, imported: tuple, rectangle: np.ndarray, scale: float
 def answer(tile: tuple, disks: np.ndarray, edges: np.ndarray, scale: float) -> tuple:
     """A neighbour's answer: its points in or near the disks, and for each hull edge the point
     beyond it whose circle through the edge's ends bulges least beyond it (the Delaunay apex
-    there, among this tile's points) with the points within the margin of the edge's line."""
-    index, xy, grid = tile
+    there, among this tile's points), the points within the margin of the edge's line, and
+    this tile's hull vertices beyond it (so that the asking tile's hull reaches the whole
+    set's in one round, not one apex a round along it)."""
+    index, xy, grid, hull = tile
     found = [points_in_disks(xy, grid, disks)] if len(disks) else []
     if len(xy) and len(edges):
         for ax, ay, bx, by in edges:
@@ -231,6 +269,7 @@ def answer(tile: tuple, disks: np.ndarray, edges: np.ndarray, scale: float) -> t
                 half2 = 0.25 * length * length
                 t = ((dx * dx + dy * dy) - half2) / (2.0 * (dx * nx + dy * ny))
                 found.append(np.array([candidates[np.argmin(t)]]))
+                found.append(hull[beyond[hull] & ~near[hull]])
             found.append(np.flatnonzero(near))
     if not found:
         return index[:0], xy[:0]
