@@ -3,23 +3,25 @@
 For each size (default 10^6, 10^7, 3·10^7 uniform points; choose with ``--sizes 1e6 1e7``):
 
 * the single call, ``triangle_rs.delaunay`` (the library's Delaunay, switch Q), in a fresh
-  subprocess that does only that: wall time and peak RSS increase over the process's RSS with
-  the points loaded;
+  subprocess that does only that: wall time and what it needs, its peak RSS over the RSS of the
+  interpreter with the libraries imported, before the points (the points and the call);
 * ``delaunay()`` on a ``LocalCluster(n_workers=2, threads_per_worker=1)``: wall time, peak RSS
   of each worker process (the kernel's high-water mark ``VmHWM``, read on the workers), rounds
   and tiles;
-* for 10^7 (``--limited-sizes``), the same with ``memory_limit`` per worker = one fifth of the
-  single call's measured peak and ``memory_per_worker`` set to it.
+* for 10^7 (``--limited-sizes``), the same with ``memory_limit`` per worker = one fifth of what
+  the single call needs and ``memory_per_worker`` set to it. The limit is Dask's: it counts
+  the whole worker process (its own ~90 MB of interpreter, dask and libraries included).
 
 The triangle sets are compared by an order-independent fingerprint computed block by block on
 the workers (each triangle's corners sorted, hashed to 64 bits, the hashes summed modulo 2^64,
 with the count): neither side's set is ever held whole by the client. Equal fingerprints mean
 equal sets up to a 2^-64 collision.
 
-Dask's memory thresholds are set for small limits: a worker's own RSS is ~110 MB, above the
-default ``target``/``spill`` fractions of a 160 MB limit, so pausing (default 80%) is turned
-off, otherwise a paused worker would wait forever; spilling to disk stays on (managed data is
-written out past 50% of the limit) and the nanny still kills at 95%.
+Dask's memory thresholds are set for small limits: a worker's own RSS is ~90 MB, half of a
+200 MB limit, so pausing (default 80%) is turned off, otherwise a worker whose freed memory the
+allocator keeps would wait forever; managed data (tiles, imports, results) is spilled to disk
+past 20% of the limit (``target``) or when the process passes 55% (``spill``), which leaves a
+round its room; the nanny still kills at 95%.
 """
 
 from __future__ import annotations
@@ -69,16 +71,18 @@ def single_call(n: int) -> dict:
     """Run in a fresh subprocess: the points (the same as the workers'), one call, measures."""
     import resource
 
+    import dask.array  # noqa: F401 - imported before the base RSS is read: not the call's
+
     import triangle_rs
 
-    xy = np.asarray(points(n).compute(scheduler="synchronous"))
     base = int(open("/proc/self/statm").read().split()[1]) * os.sysconf("SC_PAGE_SIZE")
+    xy = np.asarray(points(n).compute(scheduler="synchronous"))
     start = time.perf_counter()
     triangles = triangle_rs.delaunay(xy)
     wall = time.perf_counter() - start
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
     prints = [fingerprint(triangles[k : k + (1 << 22)]) for k in range(0, len(triangles), 1 << 22)]
-    return {"wall": wall, "peak_increase": peak - base, "peak_rss": peak, "fingerprint": combine(prints)}
+    return {"wall": wall, "needs": peak - base, "peak_rss": peak, "fingerprint": combine(prints)}
 
 
 def _peak_rss() -> int:
@@ -97,8 +101,8 @@ def distributed_run(n: int, memory_limit: Any, plan: bool) -> dict:
 
     from triangle_rs import distributed as dd
 
-    with dask.config.set({"distributed.worker.memory.pause": False, "distributed.worker.memory.target": 0.5,
-                          "distributed.worker.memory.spill": 0.6}):
+    with dask.config.set({"distributed.worker.memory.pause": False, "distributed.worker.memory.target": 0.2,
+                          "distributed.worker.memory.spill": 0.55}):
         cluster = LocalCluster(n_workers=2, threads_per_worker=1, memory_limit=memory_limit,
                                dashboard_address=None, processes=True)
         client = Client(cluster)
@@ -126,7 +130,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--sizes", nargs="+", type=float, default=[1e6, 1e7, 3e7])
     parser.add_argument("--limited-sizes", nargs="*", type=float, default=[1e7],
-                        help="sizes also run with memory_limit = single peak / 5")
+                        help="sizes also run with memory_limit = what the single call needs / 5")
     parser.add_argument("--single-only", type=int, help=argparse.SUPPRESS)
     args = parser.parse_args()
     if args.single_only:
@@ -139,11 +143,11 @@ def main() -> None:
         out = subprocess.run([sys.executable, __file__, "--single-only", str(n)], check=True,
                              capture_output=True, text=True).stdout
         one = json.loads(out.strip().splitlines()[-1])
-        print(f"| {n:.0e} | single call | {one['wall']:.1f} s | +{mb(one['peak_increase'])} "
+        print(f"| {n:.0e} | single call | {one['wall']:.1f} s | needs {mb(one['needs'])} "
               f"(RSS {mb(one['peak_rss'])}) | | |", flush=True)
         runs = [("2 workers, limit 8 GiB each", "8GiB", False)]
         if any(int(s) == n for s in args.limited_sizes):
-            runs.append((f"2 workers, limit {mb(one['peak_increase'] / 5)} each", int(one["peak_increase"] / 5), True))
+            runs.append((f"2 workers, limit {mb(one['needs'] / 5)} each (a fifth)", int(one["needs"] / 5), True))
         for label, limit, plan in runs:
             try:
                 two = distributed_run(n, limit, plan)
