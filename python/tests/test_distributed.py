@@ -208,3 +208,40 @@ def test_memory_per_worker_chooses_the_tile_count(client):
     assert result.tiles >= dd.tiles_for_memory(len(points), limit, 2)  # a grid of columns x rows
     assert result.tiles > 4
     assert_same_as_single_call(points, result)
+
+
+@pytest.mark.parametrize("shape", ["uniform", "clustered", "a line", "one place"])
+def test_the_grid_finds_every_point_in_every_disk(shape):
+    # No cluster needed: the tile's grid against a brute-force distance test.
+    from triangle_rs.distributed.grid import grid_order, points_in_disks
+
+    rng = np.random.default_rng(5)
+    xy = {
+        "uniform": rng.random((5000, 2)),
+        "clustered": np.concatenate([rng.normal(0.5, 1e-4, (4000, 2)), rng.random((1000, 2))]),
+        "a line": np.column_stack([np.linspace(0, 1, 5000), np.full(5000, 0.25)]),
+        "one place": np.full((50, 2), 0.5),
+    }[shape]
+    order, grid = grid_order(xy)
+    xy = xy[order]
+    disks = np.column_stack([rng.random(400) * 1.4 - 0.2, rng.random(400) * 1.4 - 0.2, rng.random(400) ** 3])
+    disks = np.concatenate([disks, [[0.5, 0.5, 0.0], [0.5, 0.25, 1e-9], [0.0, 0.0, np.inf], [0.5, 0.5, 10.0]]])
+    found = set(points_in_disks(xy, grid, disks).tolist())
+    finite = disks[np.isfinite(disks[:, 2])]
+    d2 = ((xy[:, None, :] - finite[None, :, :2]) ** 2).sum(axis=2)
+    expected = set(np.flatnonzero((d2 <= finite[None, :, 2] ** 2).any(axis=1)).tolist())
+    assert found == expected
+
+
+def test_the_hull_hint_holds_every_hull_vertex():
+    from triangle_rs.distributed.tasks import _hull_positions
+
+    rng = np.random.default_rng(6)
+    for xy in (rng.random((3000, 2)), rng.normal(size=(3000, 2)), lattice(20, 30)):
+        hull = set(_hull_positions(xy).tolist())
+        # A point is a hull vertex when some direction makes it the unique farthest one.
+        for angle in np.linspace(0, 2 * np.pi, 720, endpoint=False):
+            reach = xy @ np.array([np.cos(angle), np.sin(angle)])
+            top = np.flatnonzero(reach == reach.max())
+            if len(top) == 1:
+                assert int(top[0]) in hull
