@@ -49,6 +49,7 @@ def assert_same_as_single_call(points: np.ndarray, result: "dd.DistributedTriang
     reference = single(points)
     assert len(ours) == len(triangle_set(ours)), "a triangle is given twice"
     xy = points[:, :2]
+    xy = xy / 2.0 ** np.frexp(np.abs(xy).max())[1]  # exact: no product overflows or vanishes
     a, b, c = xy[ours[:, 0]], xy[ours[:, 1]], xy[ours[:, 2]]
     orientation = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0])
     assert (orientation > 0).all(), "a triangle is not counter-clockwise"
@@ -85,6 +86,12 @@ RNG = np.random.default_rng(23)
         ]), 4),
         ("more tiles than points fill", RNG.random((40, 2)), 16),
         ("far from the origin", 1e7 + RNG.random((20_000, 2)), 4),
+        # Magnitudes where products of coordinates overflow or vanish in floating point.
+        ("huge coordinates (10^300)", RNG.random((20_000, 2)) * 1e300, 9),
+        ("tiny coordinates (10^-300)", RNG.random((20_000, 2)) * 1e-300, 9),
+        ("a strip 10^-9 thin", np.column_stack([RNG.random(10_000), RNG.random(10_000) * 1e-9]), 9),
+        ("two clusters 10^6 apart", np.concatenate([RNG.random((3000, 2)), RNG.random((3000, 2)) + 1e6]), 9),
+        ("nearly collinear (10^-12 off a line)", np.column_stack([np.arange(3000.0), (np.arange(3000) % 2) * 1e-12]), 9),
     ],
     ids=lambda v: v if isinstance(v, str) else "",
 )

@@ -220,7 +220,8 @@ def delaunay(
             max(s["bounds"][3] for s in filled),
         ]
     )
-    scale = float(np.abs(bounds).max()) or 1.0
+    # The tasks' floating-point geometry is on the coordinates divided by this power of two.
+    unit = float(2.0 ** np.frexp(float(np.abs(bounds).max()) or 1.0)[1])
     index_dtype = np.dtype(np.int32 if n < 2**31 else np.int64)
     lowest = min((tuple(s["lowest"]) for s in filled))
     highest = max((tuple(s["highest"]) for s in filled))
@@ -247,12 +248,13 @@ def delaunay(
     tile_futures = []
     for t in range(tiling.count):
         pieces = [client.submit(tasks.piece, s, t, pure=True) for s in split]
-        tile_futures.append(client.submit(tasks.gather_tile, index_dtype, *pieces, pure=True))
+        tile_futures.append(client.submit(tasks.gather_tile, index_dtype, unit, *pieces, pure=True))
     del split, block_futures
     stats = client.gather([client.submit(tasks.tile_stats, f, pure=True) for f in tile_futures])
     rectangles = [tiling.rectangle(t, bounds) for t in range(tiling.count)]
     occupied = np.array([t for t in range(tiling.count) if stats[t]["count"]])
     occupied_bounds = np.array([stats[t]["bounds"] for t in occupied])
+    occupied_bounds_in_units = occupied_bounds / unit
 
     def meeting(box: np.ndarray, exclude: int) -> list:
         """The occupied tiles but ``exclude`` whose points' bounds meet ``box``."""
@@ -271,9 +273,9 @@ def delaunay(
     imported = {int(t): nothing for t in occupied}
     halo = {}
     for t in imported:
-        r = rectangles[t]
+        r = rectangles[t] / unit  # in units: the area neither overflows nor vanishes
         area = max((r[2] - r[0]) * (r[3] - r[1]), 0.0)
-        halo[t] = _HALO_SPACINGS * np.sqrt(area / stats[t]["count"]) if area > 0 else 0.0
+        halo[t] = _HALO_SPACINGS * np.sqrt(area / stats[t]["count"]) * unit if area > 0 else 0.0
 
     def widen(t: int) -> None:
         r = rectangles[t]
@@ -298,7 +300,9 @@ def delaunay(
             raise TriangulateError(f"tile and merge did not settle in {max_rounds} rounds", 1)
         questions = []
         for t in unsettled:
-            result = client.submit(tasks.tile_round, tile_futures[t], imported[t], rectangles[t], scale, pure=True)
+            result = client.submit(
+                tasks.tile_round, tile_futures[t], imported[t], rectangles[t] / unit, unit, pure=True
+            )
             questions.append(client.submit(tasks.first, result, pure=True))
             owned[t] = client.submit(tasks.second, result, pure=True)
         if show_progress:
@@ -315,7 +319,7 @@ def delaunay(
                 widen(t)
                 degenerate.append(t)
                 continue
-            answers = _ask_neighbours(client, t, q, tile_futures, meeting, occupied, occupied_bounds, scale)
+            answers = _ask_neighbours(client, t, q, tile_futures, meeting, occupied, occupied_bounds_in_units, unit)
             if answers:
                 added = client.submit(tasks.add, imported[t], *answers, pure=True)
                 imported[t] = client.submit(tasks.first, added, pure=True)
@@ -343,32 +347,31 @@ def _ask_neighbours(
     tile_futures: list,
     meeting: Callable[[np.ndarray, int], list],
     occupied: np.ndarray,
-    occupied_bounds: np.ndarray,
-    scale: float,
+    bounds_in_units: np.ndarray,
+    unit: float,
 ) -> list:
     """The answer futures of the tiles that tile ``t``'s disks meet or its hull edges face,
-    each asked only what concerns its points' bounds."""
+    each asked only what concerns its points' bounds (questions and bounds in units)."""
     disks, edges = questions["disks"], questions["edges"]
-    disks = disks[np.isfinite(disks[:, 2])]  # no point answers a disk of infinite radius
     candidates = set()
     if len(disks):
         box = np.array([
             (disks[:, 0] - disks[:, 2]).min(), (disks[:, 1] - disks[:, 2]).min(),
             (disks[:, 0] + disks[:, 2]).max(), (disks[:, 1] + disks[:, 2]).max(),
         ])
-        candidates.update(meeting(box, t))
+        candidates.update(meeting(box * unit, t))
     if len(edges):  # a hull edge's outside is a half-plane: any tile may face it
         candidates.update(int(u) for u in occupied if u != t)
     answers = []
     for u in sorted(candidates):
-        ub = occupied_bounds[int(np.searchsorted(occupied, u))]
+        ub = bounds_in_units[int(np.searchsorted(occupied, u))]
         near = (
             (disks[:, 0] + disks[:, 2] >= ub[0])
             & (disks[:, 0] - disks[:, 2] <= ub[2])
             & (disks[:, 1] + disks[:, 2] >= ub[1])
             & (disks[:, 1] - disks[:, 2] <= ub[3])
         )
-        facing = tasks.edges_facing(edges, ub, scale)
+        facing = tasks.edges_facing(edges, ub)
         if near.any() or facing.any():
-            answers.append(client.submit(tasks.answer, tile_futures[u], disks[near], edges[facing], scale, pure=True))
+            answers.append(client.submit(tasks.answer, tile_futures[u], disks[near], edges[facing], unit, pure=True))
     return answers

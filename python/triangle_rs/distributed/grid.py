@@ -49,12 +49,13 @@ def _cell_of(xy: np.ndarray, lo: np.ndarray, h: float, columns: int, rows: int) 
 
 def points_in_disks(xy: np.ndarray, grid: tuple, disks: np.ndarray) -> np.ndarray:
     """The indices (into ``xy``, sorted by cell as :func:`grid_order` left it) of the points in
-    some closed disk ``(cx, cy, r)``; disks of infinite radius are ignored. Unsorted, with
-    repetitions."""
+    some closed disk ``(cx, cy, r)``; a disk of infinite radius holds every point. Unsorted,
+    with repetitions."""
     params, starts = grid
     x0, y0, h = params[0], params[1], params[2]
     columns, rows = int(params[3]), int(params[4])
-    disks = disks[np.isfinite(disks[:, 2])]
+    if len(xy) and len(disks) and not np.isfinite(disks[:, 2]).all():
+        return np.arange(len(xy))
     if len(xy) == 0 or len(disks) == 0:
         return np.empty(0, np.int64)
     cx, cy, r = disks[:, 0], disks[:, 1], disks[:, 2]

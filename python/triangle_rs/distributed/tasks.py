@@ -5,6 +5,12 @@ A tile is a tuple ``(index, xy, grid, hull)``: its points' global indices (int32
 points) and coordinates, sorted by grid cell, the grid (:mod:`.grid`) that answers the
 neighbours' disk questions, and the positions of its points' convex hull vertices (for the
 hull-edge questions). Imported points are ``(index, xy)``.
+
+The geometry that decides which points to send (circumdisks, hull-edge sides, the grid) is
+floating point on the coordinates divided by ``unit``, the power of two at or above the
+points' largest magnitude: exact (barring underflow far below the margins), and no product of
+coordinates overflows at 10^300 or vanishes at 10^-300. Questions travel in those units. The
+triangulations themselves are the library's, on the coordinates as given.
 """
 
 from __future__ import annotations
@@ -19,9 +25,13 @@ from ..triangulateio import TriangulateIO
 from .grid import grid_order, points_in_disks
 from .tiling import Tiling
 
-# Circumdisks are asked for this much larger (relative to the coordinates' magnitude and the
-# radius): far above the rounding of the floating-point centre and radius (some 10^-15 of them).
+# Circumdisks are asked for this much larger, relative to the radius, past the bound on their
+# rounding error (see _circumdisks); and hull-edge lines are thickened by this much.
 RELATIVE_MARGIN = 1e-9
+# The absolute margin in units (coordinates at most 1 there): 2^-40, far above the rounding of
+# a centre's coordinates (2^-53).
+_ABSOLUTE_MARGIN = 2.0**-40
+_EPS = 2.0**-53
 # Shewchuk's error bound of the floating-point orientation, (3 + 16ε)ε.
 _ORIENT_BOUND = (3.0 + 16.0 * 2.0**-53) * 2.0**-53
 # Circumdisks computed at once in a round: bounds its temporaries (~150 bytes per triangle).
@@ -82,13 +92,13 @@ def piece(pieces: list, tile: int) -> tuple:
     return pieces[tile]
 
 
-def gather_tile(index_dtype: Any, *pieces) -> tuple:
-    """A tile's own points from the chunks' pieces, sorted by grid cell."""
+def gather_tile(index_dtype: Any, unit: float, *pieces) -> tuple:
+    """A tile's own points from the chunks' pieces, sorted by grid cell (in units)."""
     index = np.concatenate([p[0] for p in pieces]) if pieces else np.empty(0, index_dtype)
     xy = np.concatenate([p[1] for p in pieces]) if pieces else np.empty((0, 2))
-    order, grid = grid_order(xy)
+    order, grid = grid_order(xy / unit)
     index, xy = index[order], xy[order]
-    return index, xy, grid, _hull_positions(xy)
+    return index, xy, grid, _hull_positions(xy / unit)
 
 
 def _hull_positions(xy: np.ndarray) -> np.ndarray:
@@ -167,19 +177,35 @@ def _local_delaunay(xy: np.ndarray) -> Optional[tuple]:
     return triangles, np.asarray(out.neighborlist).reshape(-1, 3)
 
 
-def _circumdisks(xy: np.ndarray, triangles: np.ndarray, scale: float) -> np.ndarray:
-    """``(cx, cy, r)`` per triangle, the radius enlarged by the margin."""
+def _circumdisks(xy: np.ndarray, triangles: np.ndarray) -> np.ndarray:
+    """``(cx, cy, r)`` per triangle (coordinates in units, at most 1), the radius enlarged past a
+    bound on the rounding of the floating-point centre and radius (first-order, Higham's
+    model, with a factor of 4 to spare), then by the margins. A triangle too flat for floating
+    point to place its centre (the bound reaches the divisor) gets an infinite radius: every
+    point is asked for, which is always enough."""
     a, b, c = xy[triangles[:, 0]], xy[triangles[:, 1]], xy[triangles[:, 2]]
     ba, ca = b - a, c - a
-    d = 2.0 * (ba[:, 0] * ca[:, 1] - ba[:, 1] * ca[:, 0])
+    p, q = ba[:, 0] * ca[:, 1], ba[:, 1] * ca[:, 0]
+    d = 2.0 * (p - q)
     lb, lc = (ba**2).sum(axis=1), (ca**2).sum(axis=1)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        ux = (ca[:, 1] * lb - ba[:, 1] * lc) / d
-        uy = (ba[:, 0] * lc - ca[:, 0] * lb) / d
-    r = np.hypot(ux, uy)
+    nx = ca[:, 1] * lb - ba[:, 1] * lc
+    ny = ba[:, 0] * lc - ca[:, 0] * lb
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        ux, uy = nx / d, ny / d
+        d_error = 16.0 * _EPS * (np.abs(p) + np.abs(q))
+        reliable = d_error < 0.5 * np.abs(d)
+        spread = np.abs(ux) + np.abs(uy)
+        u_error = (
+            8.0 * _EPS * (np.abs(ca[:, 1] * lb) + np.abs(ba[:, 1] * lc) + np.abs(ba[:, 0] * lc) + np.abs(ca[:, 0] * lb))
+            + spread * d_error
+        ) / (np.abs(d) - d_error)
+        r = np.hypot(ux, uy)
+        error = 2.0 * u_error + 4.0 * _EPS * (r + np.abs(a).sum(axis=1) + spread)
+        r = r + 4.0 * error + RELATIVE_MARGIN * r + _ABSOLUTE_MARGIN
     centre = a + np.stack([ux, uy], axis=1)
-    r = r * (1.0 + RELATIVE_MARGIN) + RELATIVE_MARGIN * scale
-    r[~np.isfinite(r)] = np.inf
+    flat = ~(reliable & np.isfinite(r) & np.isfinite(centre).all(axis=1))
+    r[flat] = np.inf
+    centre[flat] = a[flat]
     return np.column_stack([centre, r])
 
 
@@ -192,10 +218,11 @@ def _reaching_out(disks: np.ndarray, rectangle: np.ndarray) -> np.ndarray:
     )
 
 
-def tile_round(tile: tuple, imported: tuple, rectangle: np.ndarray, scale: float) -> tuple:
+def tile_round(tile: tuple, imported: tuple, rectangle: np.ndarray, unit: float) -> tuple:
     """One round of a tile: triangulates its points with what it imported, and returns
     ``(questions, owned)``.
 
+    ``rectangle`` and the questions are in units (see the module documentation).
     ``questions`` for the neighbours: the circumdisks of the triangles around the tile's own
     vertices that reach out of its rectangle, and its hull edges at its own vertices (outward:
     the interior on their left); with how many own points duplicate another (each is left out
@@ -223,9 +250,10 @@ def tile_round(tile: tuple, imported: tuple, rectangle: np.ndarray, scale: float
     owned = index[triangles[own[triangles.min(axis=1)]]]
 
     around_own = np.flatnonzero(own[triangles].any(axis=1))
+    xy = xy / unit
     disks = []
     for begin in range(0, len(around_own), _TRIANGLES_PER_BATCH):
-        batch = _circumdisks(xy, triangles[around_own[begin : begin + _TRIANGLES_PER_BATCH]], scale)
+        batch = _circumdisks(xy, triangles[around_own[begin : begin + _TRIANGLES_PER_BATCH]])
         disks.append(batch[_reaching_out(batch, rectangle)])
     del around_own
     # Hull edges: neighbour k (opposite corner k) missing; the edge runs from corner k+1 to k+2.
@@ -244,13 +272,14 @@ def tile_round(tile: tuple, imported: tuple, rectangle: np.ndarray, scale: float
     return questions, owned
 
 
-def answer(tile: tuple, disks: np.ndarray, edges: np.ndarray, scale: float) -> tuple:
+def answer(tile: tuple, disks: np.ndarray, edges: np.ndarray, unit: float) -> tuple:
     """A neighbour's answer: its points in or near the disks, and for each hull edge the point
     beyond it whose circle through the edge's ends bulges least beyond it (the Delaunay apex
     there, among this tile's points), the points within the margin of the edge's line, and
     this tile's hull vertices beyond it (so that the asking tile's hull reaches the whole
-    set's in one round, not one apex a round along it)."""
-    index, xy, grid, hull = tile
+    set's in one round, not one apex a round along it). Questions in units."""
+    index, xy_as_given, grid, hull = tile
+    xy = xy_as_given / unit
     found = [points_in_disks(xy, grid, disks)] if len(disks) else []
     if len(xy) and len(edges):
         for ax, ay, bx, by in edges:
@@ -258,7 +287,7 @@ def answer(tile: tuple, disks: np.ndarray, edges: np.ndarray, scale: float) -> t
             # Beyond (right of) the edge, or within the margin of its line.
             side = ex * (xy[:, 1] - ay) - ey * (xy[:, 0] - ax)
             length = np.hypot(ex, ey)
-            near = np.abs(side) <= RELATIVE_MARGIN * length * (scale + length)
+            near = np.abs(side) <= RELATIVE_MARGIN * length * (1.0 + length)
             beyond = side < 0
             candidates = np.flatnonzero(beyond & ~near)
             if len(candidates):
@@ -272,9 +301,9 @@ def answer(tile: tuple, disks: np.ndarray, edges: np.ndarray, scale: float) -> t
                 found.append(hull[beyond[hull] & ~near[hull]])
             found.append(np.flatnonzero(near))
     if not found:
-        return index[:0], xy[:0]
+        return index[:0], xy_as_given[:0]
     take = np.unique(np.concatenate([np.asarray(f, dtype=np.int64) for f in found]))
-    return index[take], xy[take]
+    return index[take], xy_as_given[take]
 
 
 def add(imported: tuple, *answers) -> tuple:
@@ -285,9 +314,9 @@ def add(imported: tuple, *answers) -> tuple:
     return (index, xy[first_copy]), len(index) - len(imported[0])
 
 
-def edges_facing(edges: np.ndarray, box: np.ndarray, scale: float) -> np.ndarray:
+def edges_facing(edges: np.ndarray, box: np.ndarray) -> np.ndarray:
     """Which hull edges (``ax, ay, bx, by``, interior on the left) have some corner of ``box``
-    beyond them or within the margin of their line."""
+    beyond them or within the margin of their line (both in units)."""
     if len(edges) == 0:
         return np.zeros(0, dtype=bool)
     ex, ey = edges[:, 2] - edges[:, 0], edges[:, 3] - edges[:, 1]
@@ -295,5 +324,5 @@ def edges_facing(edges: np.ndarray, box: np.ndarray, scale: float) -> np.ndarray
     facing = np.zeros(len(edges), dtype=bool)
     for x, y in ((box[0], box[1]), (box[2], box[1]), (box[0], box[3]), (box[2], box[3])):
         side = ex * (y - edges[:, 1]) - ey * (x - edges[:, 0])
-        facing |= side <= RELATIVE_MARGIN * length * (scale + length)
+        facing |= side <= RELATIVE_MARGIN * length * (1.0 + length)
     return facing
