@@ -3,6 +3,7 @@
 //! either side of the segment (Anglada 1997; Shewchuk and Brown 2015), with Sloan's flips
 //! (1993) and a Lawson restore as the fallback when the cavity's plan is refused.
 
+use super::walk::Side;
 use super::*;
 
 /// The size of [`CavityScratch::filter`], in 64-bit words.

@@ -14,6 +14,7 @@
 //! the points' coordinates, so the Delaunay triangulation is unique.
 
 mod bulk;
+mod hilbert;
 pub mod merge;
 pub mod order;
 

@@ -1,14 +1,14 @@
 //! The driver of a refinement: snapping, the runaway limit, the strategy above the guaranteed
-//! angle with its budgets, cancel and progress polling, and the report with its warnings.
+//! angle with its budgets, and the report with its warnings (polling: [`super::polling`]).
 
 use super::attributes::Attributes;
+use super::polling::Polling;
 use super::queue::QueueOrder;
 use super::refinement::{Aside, Refinement, RunEnd, Settings};
 use super::report::{Report, Warning};
 use super::{inside, Quality, VertexKind, GUARANTEED_ANGLE};
 use crate::algorithms::constrain::Constrainer;
 use crate::algorithms::domain::Domain;
-use crate::data::{Phase, Progress, ProgressFn};
 use crate::geometry::Predicates;
 use crate::mesh::Mesh;
 
@@ -398,52 +398,4 @@ fn size_estimate<P: Predicates>(mesh: &Mesh, domain: &Domain, quality: &Quality<
         })
         .sum();
     (4.0 * triangles).min(1e12) as u64
-}
-
-/// Cancel and progress polling: the caller's `cancel` every 64 steps (once it says so, for
-/// good), `progress` every 1024.
-pub(super) struct Polling<'q> {
-    cancel: Option<&'q (dyn Fn() -> bool + Sync + 'q)>,
-    progress: Option<&'q ProgressFn<'q>>,
-    polls: u32,
-    cancelled: bool,
-}
-
-impl<'q> Polling<'q> {
-    fn new(quality: &Quality<'q>) -> Self {
-        Polling {
-            cancel: quality.cancel,
-            progress: quality.progress,
-            polls: 0,
-            cancelled: false,
-        }
-    }
-
-    /// Whether the caller has cancelled.
-    pub(super) fn cancelled(&self) -> bool {
-        self.cancelled
-    }
-
-    /// One step of refinement, with `done` Steiner points made and `waiting()` splits queued:
-    /// tells the caller of the progress now and then, asks whether to cancel now and then, and
-    /// returns whether the caller has cancelled.
-    pub(super) fn poll(&mut self, done: u64, waiting: impl FnOnce() -> usize) -> bool {
-        if self.cancelled {
-            return true;
-        }
-        self.polls = self.polls.wrapping_add(1);
-        if self.polls % 1024 == 0 {
-            if let Some(progress) = self.progress {
-                progress(Progress {
-                    phase: Phase::Refinement,
-                    done,
-                    estimate: done + waiting() as u64,
-                });
-            }
-        }
-        if self.polls % 64 == 0 && self.cancel.is_some_and(|cancelled| cancelled()) {
-            self.cancelled = true;
-        }
-        self.cancelled
-    }
 }

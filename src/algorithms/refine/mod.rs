@@ -26,9 +26,10 @@ use crate::mesh::{Mesh, TriangleId, VertexId, OUTSIDE};
 
 // The parts, each a type with its own state:
 mod attributes; // `Attributes`: the interpolated attributes of new vertices
-mod driver; // `refine`: strategy above the guaranteed angle, budgets, runaway limit, polling, report
+mod driver; // `refine`: strategy above the guaranteed angle, budgets, runaway limit, report
 mod encroachment; // `Encroachment`, `Cavity`: encroached subsegments, where subsegments are split
 mod lattice; // `seed_lattices`: lattice points where a fixed area bound governs
+mod polling; // `Polling`: the caller's cancel and progress hooks, asked now and then
 mod queue; // `BadQueue`: the bad-triangle queue
 mod refinement; // `Refinement`: the loop, splitting segments and triangles, the mesh's bookkeeping
 mod report; // `Report`, `Warning`

@@ -7,10 +7,10 @@
 use std::collections::{HashSet, VecDeque};
 
 use super::attributes::Attributes;
-use super::driver::Polling;
 use super::encroachment::{
     split_parameter, splits_faithfully, Cavity, Encroachment, BOUNDARY_SLIVER, GRID_SLIVER,
 };
+use super::polling::Polling;
 use super::queue::{BadQueue, BadTriangle, QueueOrder};
 use super::split_point::AngleBound;
 use super::walk::{walk, Walk};
