@@ -7,6 +7,7 @@
 use std::collections::{HashSet, VecDeque};
 
 use super::attributes::Attributes;
+use super::deletion::DiskWalk;
 use super::encroachment::{
     split_parameter, splits_faithfully, Cavity, Encroachment, BOUNDARY_SLIVER, GRID_SLIVER,
 };
@@ -107,6 +108,8 @@ pub(super) struct Refinement<'r, 'q, P: Predicates> {
     /// The order of the skinny triangles in `bad`.
     order: QueueOrder,
     cavity: Cavity,
+    /// The walk that finds the free vertices deleted before a subsegment is split.
+    disk: DiskWalk,
     /// Subsegments (ends, smaller first) found unsplittable: never tried again.
     unsplittable: HashSet<(VertexId, VertexId)>,
     tally: Tally,
@@ -145,6 +148,7 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
             bad: BadQueue::new(),
             order: QueueOrder::ShortestEdge,
             cavity: Cavity::default(),
+            disk: DiskWalk::default(),
             unsplittable: HashSet::new(),
             tally: Tally::default(),
             work: 0,
@@ -379,10 +383,18 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
         let floor2 = self.settings.floor2;
         let too_short = |q: Point, r: Point| (q[0] - r[0]).powi(2) + (q[1] - r[1]).powi(2) < floor2;
         let p = self.placed(exact);
-        if too_short(p, pu)
-            || too_short(p, pv)
-            || !splits_faithfully::<P>(mesh, e, p, self.largest_sliver())
-        {
+        let mut faithful = splits_faithfully::<P>(mesh, e, p, self.largest_sliver());
+        let mut e = e;
+        if !too_short(p, pu) && !too_short(p, pv) && faithful {
+            // Chew's rule: the free vertices in the diametral circle go first; the triangles
+            // beside the subsegment may have changed.
+            if self.delete_free_vertices(e) {
+                let mesh = self.mesh();
+                e = mesh.find_edge(u, v).expect("deletion keeps every subsegment");
+                faithful = splits_faithfully::<P>(mesh, e, p, self.largest_sliver());
+            }
+        }
+        if too_short(p, pu) || too_short(p, pv) || !faithful {
             self.unsplittable.insert((u.min(v), u.max(v)));
             self.tally.skipped += 1;
             return false;
@@ -393,6 +405,54 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
         self.cdt.settle(vertex);
         self.after_insertion(vertex);
         true
+    }
+
+    /// Deletes the free vertices strictly inside the diametral circle of the subsegment of
+    /// half-edge `e`, seen from it (Chew 1993, 1997; Shewchuk 2002 §5: see [`super::deletion`]),
+    /// and queues what each deletion may have spoiled: the triangles made, if bad, and the
+    /// subsegments around them, if encroached. (Queued triangles and subsegments that a
+    /// deletion removed or moved to another slot are found again or skipped when taken out.)
+    /// Returns whether any vertex was deleted.
+    fn delete_free_vertices(&mut self, e: EdgeId) -> bool {
+        let found = self.disk.free_vertices_in(self.cdt.mesh(), &self.kinds, e);
+        if found.is_empty() {
+            return false;
+        }
+        let found = found.to_vec();
+        let mut deleted = false;
+        for w in found {
+            let Some(made) = self.cdt.delete_vertex(w) else {
+                continue;
+            };
+            self.kinds[w.index()] = VertexKind::Deleted;
+            deleted = true;
+            for t in made {
+                for h in t.edges() {
+                    if self.mesh().is_segment(h) {
+                        self.check_segment(h);
+                    }
+                }
+                if inside(self.mesh(), t) {
+                    self.check_triangle(t);
+                }
+            }
+        }
+        deleted
+    }
+
+    /// Drops the deleted vertices from the mesh, the kinds and the attributes, the others
+    /// renumbered in order (input vertices come first and keep their numbers): for the end of
+    /// refinement, when no queue or state aside holds vertex ids.
+    pub(super) fn drop_deleted_vertices(&mut self) {
+        if !self.kinds.contains(&VertexKind::Deleted) {
+            return;
+        }
+        let kinds = &self.kinds;
+        let new_id = self
+            .cdt
+            .remove_vertices(|v| kinds[v.index()] != VertexKind::Deleted);
+        self.attributes.retain_rows(|v| new_id[v] != crate::mesh::NONE);
+        self.kinds.retain(|&kind| kind != VertexKind::Deleted);
     }
 
     /// Queues triangle `t` if it is bad: skinny, too big, or so by the user's test.
@@ -605,7 +665,7 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
             let corners = mesh.triangle(t);
             // For its attributes.
             let (xi, eta) = frame_coordinates(corners.map(|v| mesh.point(v)), p);
-            let vertex = self.new_vertex(p, VertexKind::Free);
+            let vertex = self.new_vertex(p, VertexKind::Seed);
             self.attributes.push_in_triangle(corners, xi, eta);
             let _ = self.cdt.insert_at(vertex, location);
             return Seeded::Inserted(vertex);
