@@ -7,9 +7,9 @@
 //! subsegment is split, the free vertices inside its diametral circle are deleted first. A
 //! vertex inside the domain, on no segment, is deleted here by flips that lower its degree:
 //! an edge to it whose quadrilateral is strictly convex is flipped (which makes it one edge
-//! fewer) until three are left — every vertex of degree four or more inside a triangulation has
-//! such an edge unless its star is degenerate (four or more of its neighbours on a line through
-//! it), where it is kept — then its three triangles become one, and Lawson flips of the edges in
+//! fewer) until three are left — planned on its link first: where no such edge is left (a
+//! degenerate star, neighbours on lines through it, as on a grid) the vertex is kept and the
+//! mesh left as it is — then its three triangles become one, and Lawson flips of the edges in
 //! its old star, segments fixed, restore the constrained Delaunay property (Lawson 1977; Chew
 //! 1989). Only the triangles of its old star change: the others stay constrained Delaunay when a
 //! vertex goes (their circumcircles hold no more visible vertices than before).
@@ -39,8 +39,8 @@ impl Mesh {
 
     /// Deletes vertex `v` (see the module documentation) from a constrained Delaunay mesh, which
     /// stays constrained Delaunay (exact predicates `P`). Returns the triangles that now fill
-    /// its old star, or `None` when `v` is kept ([`Self::is_deletable`] says no, or its star
-    /// is degenerate; the mesh is then constrained Delaunay with `v`). The vertex keeps its id
+    /// its old star, or `None` when `v` is kept and the mesh left as it is
+    /// ([`Self::is_deletable`] says no, or its star is degenerate). The vertex keeps its id
     /// and point, in no triangle (see [`Self::remove_vertices`]). Two triangle slots are
     /// freed: the last slots move into them, so that the slots stay `0 .. triangle_count()`
     /// (ids of the moved triangles change; twins, segment ids, tags and vertex edges follow).
@@ -51,33 +51,31 @@ impl Mesh {
         let link: Vec<VertexId> = self.star(v).map(|e| self.dest(e)).collect();
         // The edges to check afterwards, as vertex pairs (flips renumber half-edges).
         let mut stack: Vec<(VertexId, VertexId)> = Vec::new();
-        let mut star: Vec<EdgeId> = self.star(v).collect();
-        while star.len() > 3 {
-            // Edge v → w_i lies in (v, w_i, w_i+1) and (w_i, v, w_i-1): flipped, they become
-            // (v, w_i-1, w_i+1) and (w_i-1, w_i, w_i+1), both counter-clockwise exactly when
-            // the quadrilateral is strictly convex.
-            let k = star.len();
-            let w = |i: usize| self.dest(star[i % k]);
-            let pv = self.point(v);
+        // The flips planned on the link alone, so that a degenerate star leaves the mesh as it
+        // is. Flipping edge v → w_i, in (v, w_i, w_i+1) and (w_i, v, w_i-1), makes them
+        // (v, w_i-1, w_i+1) and (w_i-1, w_i, w_i+1), both counter-clockwise exactly when the
+        // quadrilateral is strictly convex; w_i leaves v's link.
+        let mut ring = link.clone();
+        let mut plan: Vec<(VertexId, (VertexId, VertexId))> = Vec::new();
+        let pv = self.point(v);
+        while ring.len() > 3 {
+            let k = ring.len();
             let ear = (0..k).find(|&i| {
-                let (a, b, c) = (w(i + k - 1), w(i), w(i + 1));
+                let (a, b, c) = (ring[(i + k - 1) % k], ring[i], ring[(i + 1) % k]);
                 let (pa, pb, pc) = (self.point(a), self.point(b), self.point(c));
                 P::orient2d(pa, pb, pc) > 0.0 && P::orient2d(pv, pa, pc) > 0.0
             });
-            let Some(i) = ear else {
-                // A degenerate star: `v` stays, and the flips made so far are undone by
-                // Lawson's (the star's edges, its polygon's and the diagonals made).
-                stack.extend(star.iter().map(|&e| (v, self.dest(e))));
-                stack.extend((0..link.len()).map(|j| (link[j], link[(j + 1) % link.len()])));
-                self.legalize::<P, _>(&mut stack, &mut BetweenSegments::default());
-                return None;
-            };
-            let diagonal = (w(i + k - 1), w(i + 1));
-            self.flip(star[i]);
-            stack.push(diagonal);
-            star.clear();
-            star.extend(self.star(v));
+            // None: a degenerate star, `v` stays.
+            let i = ear?;
+            plan.push((ring[i], (ring[(i + k - 1) % k], ring[(i + 1) % k])));
+            ring.remove(i);
         }
+        for (w, diagonal) in plan {
+            let e = self.find_edge(v, w).expect("an edge of the star");
+            self.flip(e);
+            stack.push(diagonal);
+        }
+        let star: Vec<EdgeId> = self.star(v).collect();
         // Degree 3: (v, a, b), (v, b, c), (v, c, a) become (a, b, c) in the first one's slot.
         let edges = [star[0], star[1], star[2]];
         let [a, b, c] = edges.map(|e| self.dest(e));
@@ -92,7 +90,10 @@ impl Mesh {
         self.vertex_edge[v.index()] = NONE;
         self.remove_slot(t1.max(t2));
         self.remove_slot(t1.min(t2));
-        let start = self.find_edge(a, b).expect("the merged triangle").triangle();
+        let start = self
+            .find_edge(a, b)
+            .expect("the merged triangle")
+            .triangle();
         let hole = self.hole(start, &link);
         debug_assert_eq!(hole.len(), link.len() - 2);
         for &t in &hole {
@@ -185,9 +186,9 @@ impl Mesh {
         let n = self.points.len();
         let mut new_id = vec![NONE; n];
         let mut count = 0;
-        for v in 0..n {
+        for (v, id) in new_id.iter_mut().enumerate() {
             if keep(VertexId::new(v as u32)) {
-                new_id[v] = count as u32;
+                *id = count as u32;
                 self.points[count] = self.points[v];
                 if !self.vertex_edge.is_empty() {
                     self.vertex_edge[count] = self.vertex_edge[v];

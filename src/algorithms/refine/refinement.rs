@@ -20,7 +20,7 @@ use crate::algorithms::constrain::Constrainer;
 use crate::algorithms::delaunay::Location;
 use crate::algorithms::domain::Domain;
 use crate::geometry::{frame_coordinates, min_angle_sin2, Grid, Point, Predicates};
-use crate::mesh::{EdgeId, Mesh, TriangleId, VertexId, GHOST};
+use crate::mesh::{EdgeId, Mesh, TriangleId, VertexId, GHOST, NONE};
 
 /// What a refinement works toward, and at what resolution: fixed for all its runs.
 pub(super) struct Settings<'r, 'q> {
@@ -383,18 +383,17 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
         let floor2 = self.settings.floor2;
         let too_short = |q: Point, r: Point| (q[0] - r[0]).powi(2) + (q[1] - r[1]).powi(2) < floor2;
         let p = self.placed(exact);
-        let mut faithful = splits_faithfully::<P>(mesh, e, p, self.largest_sliver());
+        let faithful =
+            |this: &Self, e| splits_faithfully::<P>(this.mesh(), e, p, this.largest_sliver());
+        let mut splits = !too_short(p, pu) && !too_short(p, pv) && faithful(self, e);
         let mut e = e;
-        if !too_short(p, pu) && !too_short(p, pv) && faithful {
-            // Chew's rule: the free vertices in the diametral circle go first; the triangles
-            // beside the subsegment may have changed.
-            if self.delete_free_vertices(e) {
-                let mesh = self.mesh();
-                e = mesh.find_edge(u, v).expect("deletion keeps every subsegment");
-                faithful = splits_faithfully::<P>(mesh, e, p, self.largest_sliver());
-            }
+        // Chew's rule: the free vertices in the diametral circle go first (the triangles beside
+        // the subsegment may change).
+        if splits && self.delete_free_vertices(e) {
+            e = self.mesh().find_edge(u, v).expect("a subsegment stays");
+            splits = faithful(self, e);
         }
-        if too_short(p, pu) || too_short(p, pv) || !faithful {
+        if !splits {
             self.unsplittable.insert((u.min(v), u.max(v)));
             self.tally.skipped += 1;
             return false;
@@ -407,19 +406,16 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
         true
     }
 
-    /// Deletes the free vertices strictly inside the diametral circle of the subsegment of
-    /// half-edge `e`, seen from it (Chew 1993, 1997; Shewchuk 2002 §5: see [`super::deletion`]),
-    /// and queues what each deletion may have spoiled: the triangles made, if bad, and the
-    /// subsegments around them, if encroached. (Queued triangles and subsegments that a
-    /// deletion removed or moved to another slot are found again or skipped when taken out.)
-    /// Returns whether any vertex was deleted.
+    /// Deletes the free vertices strictly inside the diametral circle of the subsegment of `e`,
+    /// seen from it (Chew 1993, 1997; Shewchuk 2002 §5: [`super::deletion`]), and queues the
+    /// triangles made if bad and the subsegments around them if encroached (queued ones that a
+    /// deletion removed or moved are found again or skipped when taken out). Whether it did.
     fn delete_free_vertices(&mut self, e: EdgeId) -> bool {
         let found = self.disk.free_vertices_in(self.cdt.mesh(), &self.kinds, e);
         if found.is_empty() {
             return false;
         }
-        let found = found.to_vec();
-        let mut deleted = false;
+        let (found, mut deleted) = (found.to_vec(), false);
         for w in found {
             let Some(made) = self.cdt.delete_vertex(w) else {
                 continue;
@@ -451,7 +447,7 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
         let new_id = self
             .cdt
             .remove_vertices(|v| kinds[v.index()] != VertexKind::Deleted);
-        self.attributes.retain_rows(|v| new_id[v] != crate::mesh::NONE);
+        self.attributes.retain_rows(|v| new_id[v] != NONE);
         self.kinds.retain(|&kind| kind != VertexKind::Deleted);
     }
 
