@@ -13,6 +13,12 @@
 //! from the subsegment's domain side(s) across edges that meet the disk, never across a
 //! segment. The deletion itself is the mesh's ([`crate::mesh::Mesh::delete_vertex`]); the
 //! refinement re-checks the triangles it makes and the subsegments around them.
+//!
+//! At every angle bound, as Triangle: above 30° in shortest-edge order, where a run can cascade
+//! (see `super::queue`), deleted vertices are made again, and more (Triangle's `greenland.ele`
+//! with `rq34`: the straight run, discarded in the end, makes 847 000 vertices instead of
+//! 397 000, 1.8× the time); left out there, the meshes kept over Triangle's examples have 0.06%
+//! more triangles on geometric mean, and a smallest angle at least Triangle's on one case fewer.
 
 use super::{inside, VertexKind};
 use crate::geometry::Point;
