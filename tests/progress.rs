@@ -140,7 +140,12 @@ fn every_phase_reports_its_start_and_end_and_refinement_reports_while_it_runs() 
     let (out20, seen20) = run("pzq20a0.00005Q", &input, None);
     let inserted20 = out20.points.as_ref().unwrap().len() as i64 - input.points.len() as i64;
     let last20 = seen20.reports.iter().rev().find(|r| r.0 == 2).unwrap();
-    assert_eq!(last20.1, inserted20, "one run below 28.6°");
+    // One run below 28.6°: its vertices, those kept and the few that Chew's rule deleted again
+    // (free vertices in the diametral circle of a subsegment being split).
+    assert!(
+        last20.1 >= inserted20 && last20.1 <= inserted20 + inserted20 / 10,
+        "one run below 28.6°: {last20:?}, {inserted20} kept"
+    );
     let delaunay = seen.reports.iter().find(|r| r.0 == 0).unwrap();
     assert_eq!(delaunay.2, input.points.len() as i64);
 

@@ -530,9 +530,12 @@ fn the_steiner_budget_caps_new_vertices() {
             let (out, _) = refined(&pslg, &switches);
             checked(&pslg, &switches, &out, |_, _| {});
             let added = out.counts.points as usize - before;
-            // These bounds need hundreds of new vertices: the budget is used up.
-            assert_eq!(
-                added, budget,
+            // These bounds need hundreds of new vertices: the budget is used up. It counts the
+            // vertices inserted, as Triangle's does: those that Chew's rule deletes again (free
+            // vertices in the diametral circle of a subsegment being split) do not give it back
+            // (Triangle's `qS6` on diamond_02_00009.node leaves 5 of its 6).
+            assert!(
+                added <= budget && 4 * added >= 3 * budget,
                 "{}, \"{switches}\": {added} new vertices",
                 pslg.name
             );

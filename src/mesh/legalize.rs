@@ -60,6 +60,49 @@ pub trait Lawson {
     fn kept(&mut self, _e: EdgeId) {}
 }
 
+/// The Lawson policy of the constrained restore: the stack holds vertex pairs (flips renumber
+/// half-edges, an edge is found again by its ends), segments stay, edges next to the outside
+/// stay, and a flip stacks its quadrilateral's four outer edges (Lawson flips that never cross
+/// a segment give the constrained Delaunay triangulation: Chew 1989; Lee and Lin 1986). Used by
+/// constrain's restore and by vertex deletion ([`Mesh::delete_vertex`]), which also wants the
+/// triangles flipped (`record`).
+#[derive(Default)]
+pub struct BetweenSegments {
+    /// Whether to record the triangles of every flip in `flipped`.
+    pub record: bool,
+    /// The two triangles of each flip, where `record` asks for them.
+    pub flipped: Vec<TriangleId>,
+}
+
+impl Lawson for BetweenSegments {
+    type Item = (VertexId, VertexId);
+
+    fn edge(&self, mesh: &Mesh, (u, v): (VertexId, VertexId)) -> Option<EdgeId> {
+        mesh.find_edge(u, v)
+    }
+
+    fn is_fixed(&self, mesh: &Mesh, e: EdgeId) -> bool {
+        mesh.is_segment(e)
+    }
+
+    fn ghosts(&self) -> Ghosts {
+        Ghosts::Fixed
+    }
+
+    fn after_flip(
+        &mut self,
+        quad: &Quad,
+        flipped: [TriangleId; 2],
+        stack: &mut Vec<(VertexId, VertexId)>,
+    ) {
+        let Quad { a, b, c, d, .. } = *quad;
+        stack.extend_from_slice(&[(a, d), (d, b), (b, c), (c, a)]);
+        if self.record {
+            self.flipped.extend_from_slice(&flipped);
+        }
+    }
+}
+
 impl Mesh {
     /// Runs Lawson's flips from the entries on `stack` until it is empty.
     ///

@@ -14,11 +14,13 @@
 //! [`TriangleId`]), accessors, and operations that keep the invariants (twins mutual, tracking
 //! up to date). The parts: `ids` the typed ids; `ops` the topological operations (splits, flips,
 //! ghosts, retaining part of a mesh); `star` the half-edges around a vertex; `walk` the edges
-//! along a line; `legalize` Lawson's flips with a policy; `raw` unchecked access for the bulk
-//! Delaunay build and the `u32` view that the output numbering reads.
+//! along a line; `legalize` Lawson's flips with a policy; `delete` deleting a vertex (Chew's
+//! rule in refinement) and dropping deleted vertices from the numbering; `raw` unchecked access
+//! for the bulk Delaunay build and the `u32` view that the output numbering reads.
 
 use crate::geometry::Point;
 
+mod delete;
 mod ids;
 mod legalize;
 mod ops;
@@ -27,7 +29,7 @@ mod star;
 mod walk;
 
 pub use ids::{EdgeId, TriangleId, VertexId};
-pub use legalize::{Ghosts, Lawson, Quad};
+pub use legalize::{BetweenSegments, Ghosts, Lawson, Quad};
 pub use star::Star;
 pub use walk::{LineStep, LineWalk};
 

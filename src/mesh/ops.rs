@@ -63,7 +63,7 @@ impl Mesh {
     /// After triangles were rewritten: every corner's outgoing half-edge and every new
     /// half-edge's segment id (copied from its external twin, or none for an inner edge).
     #[inline(always)]
-    fn refresh(&mut self, triangles: &[u32], inner: &[u32]) {
+    pub(super) fn refresh(&mut self, triangles: &[u32], inner: &[u32]) {
         if !self.vertex_edge.is_empty() {
             for &t in triangles {
                 for e in 3 * t..3 * t + 3 {

@@ -24,7 +24,7 @@ use std::collections::{HashSet, VecDeque};
 use crate::algorithms::delaunay::{Inserter, Location};
 use crate::error::Error;
 use crate::geometry::{Point, Predicates};
-use crate::mesh::{EdgeId, Ghosts, Lawson, Mesh, Quad, TriangleId, VertexId, GHOST, NONE};
+use crate::mesh::{BetweenSegments, EdgeId, Mesh, TriangleId, VertexId, GHOST, NONE};
 
 // The parts: this file inserts segments (crossings, vertices on segments, hull segments, point
 // location for holes and regions); `walk` walks along a segment from an endpoint, recording the
@@ -151,6 +151,18 @@ impl<P: Predicates> Constrainer<P> {
     /// Keeps only the triangles for which `keep` holds (see [`Mesh::retain_triangles`]).
     pub fn retain_triangles(&mut self, keep: impl Fn(TriangleId) -> bool) {
         self.inserter.retain_triangles(keep);
+    }
+
+    /// Deletes vertex `v`, a vertex inside the domain on no segment, keeping the triangulation
+    /// constrained Delaunay (see [`Mesh::delete_vertex`]): the triangles made, or `None` when
+    /// it stays.
+    pub fn delete_vertex(&mut self, v: VertexId) -> Option<Vec<TriangleId>> {
+        self.inserter.delete_vertex(v)
+    }
+
+    /// Drops deleted vertices from the numbering (see [`Mesh::remove_vertices`]).
+    pub fn remove_vertices(&mut self, keep: impl Fn(VertexId) -> bool) -> Vec<u32> {
+        self.inserter.remove_vertices(keep)
     }
 
     /// The tracked outgoing half-edge of `v` ([`EdgeId::NONE`] for a vertex in no triangle).
@@ -435,7 +447,7 @@ impl<P: Predicates> Constrainer<P> {
         let mut stack = edges;
         self.inserter
             .mesh_mut()
-            .legalize::<P, _>(&mut stack, &mut BetweenSegments);
+            .legalize::<P, _>(&mut stack, &mut BetweenSegments::default());
     }
 
     /// Marks every hull edge that is not a segment yet as a segment with marker `marker` (the `c`
@@ -470,38 +482,6 @@ impl<P: Predicates> Constrainer<P> {
                 .filter(|&t| !self.inserter.mesh().is_ghost(t)),
             Location::Outside(_) => None,
         }
-    }
-}
-
-/// The Lawson policy of the constrained restore: the stack holds vertex pairs (flips renumber
-/// half-edges, an edge is found again by its ends), segments stay, edges next to the outside
-/// stay, and a flip stacks its quadrilateral's four outer edges (Lawson flips that never cross
-/// a segment give the constrained Delaunay triangulation: Chew 1989; Lee and Lin 1986).
-struct BetweenSegments;
-
-impl Lawson for BetweenSegments {
-    type Item = (VertexId, VertexId);
-
-    fn edge(&self, mesh: &Mesh, (u, v): (VertexId, VertexId)) -> Option<EdgeId> {
-        mesh.find_edge(u, v)
-    }
-
-    fn is_fixed(&self, mesh: &Mesh, e: EdgeId) -> bool {
-        mesh.is_segment(e)
-    }
-
-    fn ghosts(&self) -> Ghosts {
-        Ghosts::Fixed
-    }
-
-    fn after_flip(
-        &mut self,
-        quad: &Quad,
-        _flipped: [TriangleId; 2],
-        stack: &mut Vec<(VertexId, VertexId)>,
-    ) {
-        let Quad { a, b, c, d, .. } = *quad;
-        stack.extend_from_slice(&[(a, d), (d, b), (b, c), (c, a)]);
     }
 }
 

@@ -154,3 +154,157 @@ fn tri_corner_count(n: usize, m: &crate::mesh::Mesh) -> usize {
     assert_eq!(m.points().len(), n);
     3 * (2 * n - 2)
 }
+
+/// The real triangles of `m`, each rotated to start at its smallest corner, sorted.
+fn triangle_set(m: &Mesh) -> Vec<[u32; 3]> {
+    let mut set: Vec<[u32; 3]> = m
+        .real_triangles()
+        .map(|t| {
+            let c = m.triangle(t).map(VertexId::raw);
+            let k = (0..3).min_by_key(|&i| c[i]).unwrap();
+            [c[k], c[(k + 1) % 3], c[(k + 2) % 3]]
+        })
+        .collect();
+    set.sort_unstable();
+    set
+}
+
+/// The CDT of `pts` with `segments` (pairs of indices into `pts`).
+fn cdt_of(pts: &[Point], segments: &[(u32, u32)]) -> Constrainer<Exact> {
+    let tri = crate::algorithms::delaunay::triangulate::<Exact>(pts.to_vec(), &hilbert_order(pts));
+    let mut cdt = Constrainer::new(Inserter::<Exact>::new(tri.mesh));
+    for &(a, b) in segments {
+        let (a, b) = (VertexId::new(a), VertexId::new(b));
+        let id = cdt.new_segment_id(1, a, b);
+        cdt.insert_segment(a, b, id).unwrap();
+    }
+    cdt
+}
+
+/// Vertex deletion (`Mesh::delete_vertex`, Chew's rule in refinement) on CDTs of random points
+/// with segments along some of their Delaunay edges, and on grid points without segments
+/// (cocircular and collinear neighbours: degenerate stars, which keep their vertex and leave the
+/// mesh as it was): after each
+/// deletion the mesh is valid and constrained Delaunay, two triangle slots fewer, every tracked
+/// vertex edge leaves its vertex; in the end its triangles are those of the CDT of the points
+/// left, and with the deleted vertices removed from the numbering (`Mesh::remove_vertices`) it
+/// is that CDT vertex for vertex.
+#[test]
+fn deleted_vertices_leave_the_cdt_of_the_others() {
+    let (mut deleted_in_all, mut kept_deletable) = (0, 0);
+    for seed in 0..400u64 {
+        let mut s = seed;
+        let grid = seed % 5 == 4;
+        let n = if grid {
+            25 + (splitmix64(&mut s) % 40) as usize
+        } else {
+            6 + (splitmix64(&mut s) % 80) as usize
+        };
+        let pts: Vec<Point> = (0..n)
+            .map(|i| {
+                if grid {
+                    [(i % 7) as f64 * 0.25, (i / 7) as f64 * 0.25]
+                } else {
+                    [rand01(&mut s), rand01(&mut s)]
+                }
+            })
+            .collect();
+        let dt = cdt_of(&pts, &[]);
+        let mut segments = Vec::new();
+        if !grid {
+            let m = dt.mesh();
+            for _ in 0..(splitmix64(&mut s) % 8) {
+                let e =
+                    crate::mesh::EdgeId::new((splitmix64(&mut s) % m.edge_count() as u64) as u32);
+                let (a, b) = (m.origin(e), m.dest(e));
+                if a != GHOST && b != GHOST {
+                    segments.push((a.raw(), b.raw()));
+                }
+            }
+        }
+        let mut cdt = cdt_of(&pts, &segments);
+        let mut gone = vec![false; n];
+        let mut order: Vec<u32> = (0..n as u32).collect();
+        for i in (1..n).rev() {
+            order.swap(i, (splitmix64(&mut s) % (i as u64 + 1)) as usize);
+        }
+        for &v in order.iter().filter(|_| splitmix64(&mut s) % 3 != 0) {
+            let v = VertexId::new(v);
+            let (before, triangles_before) =
+                (cdt.mesh().triangle_count(), triangle_set(cdt.mesh()));
+            let deletable = cdt.mesh().is_deletable(v);
+            let m = match cdt.delete_vertex(v) {
+                Some(made) => {
+                    assert!(deletable, "seed {seed}: {v} deleted");
+                    gone[v.index()] = true;
+                    deleted_in_all += 1;
+                    let m = cdt.mesh();
+                    assert_eq!(m.triangle_count() + 2, before, "seed {seed}");
+                    assert!(m.vertex_edge(v).is_none(), "seed {seed}");
+                    assert!(made.iter().all(|t| t.raw() < m.triangle_count()));
+                    assert!(made.iter().all(|&t| !m.triangle(t).contains(&v)));
+                    m
+                }
+                None => {
+                    kept_deletable += usize::from(deletable);
+                    let m = cdt.mesh();
+                    assert_eq!(m.triangle_count(), before, "seed {seed}: {v} kept");
+                    assert_eq!(triangle_set(m), triangles_before, "seed {seed}: {v} kept");
+                    m
+                }
+            };
+            m.check_topology()
+                .unwrap_or_else(|e| panic!("seed {seed}: {e}"));
+            for w in (0..n as u32).map(VertexId::new) {
+                let e = m.vertex_edge(w);
+                assert_eq!(e.is_none(), gone[w.index()], "seed {seed}: {w}");
+                assert!(e.is_none_or(|e| m.origin(e) == w), "seed {seed}: {w}");
+            }
+            for (a, b) in &segments {
+                let e = m.find_edge(VertexId::new(*a), VertexId::new(*b));
+                assert!(e.is_some_and(|e| m.is_segment(e)), "seed {seed}");
+            }
+            assert_constrained_delaunay(m, seed);
+        }
+        let kept: Vec<u32> = (0..n as u32).filter(|&v| !gone[v as usize]).collect();
+        let renamed: Vec<u32> = {
+            let mut renamed = vec![NONE; n];
+            for (i, &v) in kept.iter().enumerate() {
+                renamed[v as usize] = i as u32;
+            }
+            renamed
+        };
+        let rest_points: Vec<Point> = kept.iter().map(|&v| pts[v as usize]).collect();
+        let rest_segments: Vec<(u32, u32)> = segments
+            .iter()
+            .map(|&(a, b)| (renamed[a as usize], renamed[b as usize]))
+            .collect();
+        let rest = cdt_of(&rest_points, &rest_segments);
+        let expected = triangle_set(rest.mesh());
+        let in_old_ids: Vec<[u32; 3]> = {
+            let mut set: Vec<[u32; 3]> = expected
+                .iter()
+                .map(|t| {
+                    let c = t.map(|v| kept[v as usize]);
+                    let k = (0..3).min_by_key(|&i| c[i]).unwrap();
+                    [c[k], c[(k + 1) % 3], c[(k + 2) % 3]]
+                })
+                .collect();
+            set.sort_unstable();
+            set
+        };
+        assert_eq!(triangle_set(cdt.mesh()), in_old_ids, "seed {seed}");
+        let new_id = cdt.remove_vertices(|v| !gone[v.index()]);
+        assert_eq!(new_id, renamed, "seed {seed}");
+        let m = cdt.mesh();
+        m.check_topology()
+            .unwrap_or_else(|e| panic!("seed {seed}: {e}"));
+        assert_eq!(m.points(), &rest_points[..], "seed {seed}");
+        assert_eq!(triangle_set(m), expected, "seed {seed}");
+        for w in (0..m.vertex_count()).map(VertexId::new) {
+            assert!(m.vertex_edge(w).is_some_and(|e| m.origin(e) == w));
+        }
+    }
+    assert!(deleted_in_all > 1000, "{deleted_in_all} deletions");
+    assert!(kept_deletable > 0, "no degenerate star met");
+}

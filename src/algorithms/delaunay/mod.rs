@@ -191,6 +191,20 @@ impl<P: Predicates> Inserter<P> {
         self.last = TriangleId::new(0);
     }
 
+    /// Deletes vertex `v` (see [`Mesh::delete_vertex`]); the next walk starts in the triangles
+    /// made (the one it would have started from may have moved to another slot).
+    pub fn delete_vertex(&mut self, v: VertexId) -> Option<Vec<TriangleId>> {
+        let made = self.mesh.delete_vertex::<P>(v)?;
+        self.last = made[0];
+        Some(made)
+    }
+
+    /// Removes the vertices deleted by [`Self::delete_vertex`] for which `keep` is false (see
+    /// [`Mesh::remove_vertices`]); returns each old vertex's new id.
+    pub fn remove_vertices(&mut self, keep: impl Fn(VertexId) -> bool) -> Vec<u32> {
+        self.mesh.remove_vertices(keep)
+    }
+
     /// A triangle near the last insertion: a good start for a walk.
     pub fn last_triangle(&self) -> TriangleId {
         self.last

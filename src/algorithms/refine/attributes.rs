@@ -40,6 +40,22 @@ impl<'a> Attributes<'a> {
         }
     }
 
+    /// Keeps the rows of the vertices `v` for which `keep(v)` holds, in order.
+    pub(super) fn retain_rows(&mut self, keep: impl Fn(usize) -> bool) {
+        let k = self.count;
+        if k == 0 {
+            return;
+        }
+        let mut kept = 0;
+        for v in 0..self.values.len() / k {
+            if keep(v) {
+                self.values.copy_within(v * k..(v + 1) * k, kept * k);
+                kept += 1;
+            }
+        }
+        self.values.truncate(kept * k);
+    }
+
     /// Exchanges the values with `other` (a refinement state set aside).
     pub(super) fn swap(&mut self, other: &mut Vec<f64>) {
         std::mem::swap(self.values, other);

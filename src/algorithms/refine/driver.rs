@@ -105,6 +105,9 @@ pub fn refine<P: Predicates>(
             off_grid = true;
         }
     }
+    // Vertices deleted by Chew's rule leave the numbering: Steiner points stay in order after
+    // the input's.
+    driver.refinement.drop_deleted_vertices();
     let tally = driver.refinement.tally();
     let mut warnings = driver.warnings;
     if outcome == Outcome::Runaway {

@@ -26,6 +26,7 @@ use crate::mesh::{Mesh, TriangleId, VertexId, OUTSIDE};
 
 // The parts, each a type with its own state:
 mod attributes; // `Attributes`: the interpolated attributes of new vertices
+mod deletion; // `DiskWalk`: the free vertices deleted before a subsegment is split (Chew)
 mod driver; // `refine`: strategy above the guaranteed angle, budgets, runaway limit, report
 mod encroachment; // `Encroachment`, `Cavity`: encroached subsegments, where subsegments are split
 mod lattice; // `seed_lattices`: lattice points where a fixed area bound governs
@@ -95,8 +96,16 @@ enum VertexKind {
     /// power-of-two distance from (concentric shells), or [`VertexId::NONE`] (a midpoint);
     /// `shell`: that distance's exponent (the distance is 2^shell; 0 for a midpoint).
     OnSegment { corner: VertexId, shell: i32 },
-    /// A vertex inserted inside the domain by refinement.
+    /// A vertex inserted inside the domain by refinement, at a bad triangle's split point:
+    /// deleted when a subsegment whose diametral circle holds it is split (Chew's rule, see
+    /// [`deletion`]).
     Free,
+    /// A lattice point seeded before the loop ([`lattice`]): free, but never deleted (the lattice
+    /// stands for the points the area bound asks for; long subsegments split early would
+    /// delete swaths of it).
+    Seed,
+    /// A free vertex deleted (in no triangle); dropped from the numbering when refinement ends.
+    Deleted,
 }
 
 /// Whether triangle `t` belongs to the domain (refinement works on the domain alone; the

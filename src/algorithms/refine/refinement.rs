@@ -7,6 +7,7 @@
 use std::collections::{HashSet, VecDeque};
 
 use super::attributes::Attributes;
+use super::deletion::DiskWalk;
 use super::encroachment::{
     split_parameter, splits_faithfully, Cavity, Encroachment, BOUNDARY_SLIVER, GRID_SLIVER,
 };
@@ -19,7 +20,7 @@ use crate::algorithms::constrain::Constrainer;
 use crate::algorithms::delaunay::Location;
 use crate::algorithms::domain::Domain;
 use crate::geometry::{frame_coordinates, min_angle_sin2, Grid, Point, Predicates};
-use crate::mesh::{EdgeId, Mesh, TriangleId, VertexId, GHOST};
+use crate::mesh::{EdgeId, Mesh, TriangleId, VertexId, GHOST, NONE};
 
 /// What a refinement works toward, and at what resolution: fixed for all its runs.
 pub(super) struct Settings<'r, 'q> {
@@ -107,6 +108,8 @@ pub(super) struct Refinement<'r, 'q, P: Predicates> {
     /// The order of the skinny triangles in `bad`.
     order: QueueOrder,
     cavity: Cavity,
+    /// The walk that finds the free vertices deleted before a subsegment is split.
+    disk: DiskWalk,
     /// Subsegments (ends, smaller first) found unsplittable: never tried again.
     unsplittable: HashSet<(VertexId, VertexId)>,
     tally: Tally,
@@ -145,6 +148,7 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
             bad: BadQueue::new(),
             order: QueueOrder::ShortestEdge,
             cavity: Cavity::default(),
+            disk: DiskWalk::default(),
             unsplittable: HashSet::new(),
             tally: Tally::default(),
             work: 0,
@@ -379,10 +383,17 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
         let floor2 = self.settings.floor2;
         let too_short = |q: Point, r: Point| (q[0] - r[0]).powi(2) + (q[1] - r[1]).powi(2) < floor2;
         let p = self.placed(exact);
-        if too_short(p, pu)
-            || too_short(p, pv)
-            || !splits_faithfully::<P>(mesh, e, p, self.largest_sliver())
-        {
+        let faithful =
+            |this: &Self, e| splits_faithfully::<P>(this.mesh(), e, p, this.largest_sliver());
+        let mut splits = !too_short(p, pu) && !too_short(p, pv) && faithful(self, e);
+        let mut e = e;
+        // Chew's rule: the free vertices in the diametral circle go first (the triangles beside
+        // the subsegment may change).
+        if splits && self.delete_free_vertices(e) {
+            e = self.mesh().find_edge(u, v).expect("a subsegment stays");
+            splits = faithful(self, e);
+        }
+        if !splits {
             self.unsplittable.insert((u.min(v), u.max(v)));
             self.tally.skipped += 1;
             return false;
@@ -393,6 +404,51 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
         self.cdt.settle(vertex);
         self.after_insertion(vertex);
         true
+    }
+
+    /// Deletes the free vertices strictly inside the diametral circle of the subsegment of `e`,
+    /// seen from it (Chew 1993, 1997; Shewchuk 2002 §5: [`super::deletion`]), and queues the
+    /// triangles made if bad and the subsegments around them if encroached (queued ones that a
+    /// deletion removed or moved are found again or skipped when taken out). Whether it did.
+    fn delete_free_vertices(&mut self, e: EdgeId) -> bool {
+        let found = self.disk.free_vertices_in(self.cdt.mesh(), &self.kinds, e);
+        if found.is_empty() {
+            return false;
+        }
+        let (found, mut deleted) = (found.to_vec(), false);
+        for w in found {
+            let Some(made) = self.cdt.delete_vertex(w) else {
+                continue;
+            };
+            self.kinds[w.index()] = VertexKind::Deleted;
+            deleted = true;
+            for t in made {
+                for h in t.edges() {
+                    if self.mesh().is_segment(h) {
+                        self.check_segment(h);
+                    }
+                }
+                if inside(self.mesh(), t) {
+                    self.check_triangle(t);
+                }
+            }
+        }
+        deleted
+    }
+
+    /// Drops the deleted vertices from the mesh, the kinds and the attributes, the others
+    /// renumbered in order (input vertices come first and keep their numbers): for the end of
+    /// refinement, when no queue or state aside holds vertex ids.
+    pub(super) fn drop_deleted_vertices(&mut self) {
+        if !self.kinds.contains(&VertexKind::Deleted) {
+            return;
+        }
+        let kinds = &self.kinds;
+        let new_id = self
+            .cdt
+            .remove_vertices(|v| kinds[v.index()] != VertexKind::Deleted);
+        self.attributes.retain_rows(|v| new_id[v] != NONE);
+        self.kinds.retain(|&kind| kind != VertexKind::Deleted);
     }
 
     /// Queues triangle `t` if it is bad: skinny, too big, or so by the user's test.
@@ -605,7 +661,7 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
             let corners = mesh.triangle(t);
             // For its attributes.
             let (xi, eta) = frame_coordinates(corners.map(|v| mesh.point(v)), p);
-            let vertex = self.new_vertex(p, VertexKind::Free);
+            let vertex = self.new_vertex(p, VertexKind::Seed);
             self.attributes.push_in_triangle(corners, xi, eta);
             let _ = self.cdt.insert_at(vertex, location);
             return Seeded::Inserted(vertex);

@@ -1,0 +1,211 @@
+//! Deleting a vertex from a constrained Delaunay triangulation, and dropping deleted vertices
+//! from the numbering.
+//!
+//! Delaunay refinement after Chew ("Guaranteed-quality mesh generation for curved surfaces",
+//! 1993; "Guaranteed-quality Delaunay meshing in 3D", 1997), as Shewchuk describes it
+//! ("Delaunay refinement algorithms for triangular mesh generation", CGTA 2002, §5): when a
+//! subsegment is split, the free vertices inside its diametral circle are deleted first. A
+//! vertex inside the domain, on no segment, is deleted here by flips that lower its degree:
+//! an edge to it whose quadrilateral is strictly convex is flipped (which makes it one edge
+//! fewer) until three are left — planned on its link first: where no such edge is left (a
+//! degenerate star, neighbours on lines through it, as on a grid) the vertex is kept and the
+//! mesh left as it is — then its three triangles become one, and Lawson flips of the edges in
+//! its old star, segments fixed, restore the constrained Delaunay property (Lawson 1977; Chew
+//! 1989). Only the triangles of its old star change: the others stay constrained Delaunay when a
+//! vertex goes (their circumcircles hold no more visible vertices than before).
+
+use super::{BetweenSegments, EdgeId, Mesh, TriangleId, VertexId, GHOST, NONE};
+use crate::geometry::Predicates;
+
+impl Mesh {
+    /// Whether [`Self::delete_vertex`] may delete `v`: it is a corner of some triangle, not on
+    /// the hull or the domain's boundary (no edge to the vertex at infinity), on no segment (no
+    /// edge of it is one), and its triangles all have one tag (the merged triangle keeps it).
+    /// Needs segment and vertex tracking.
+    pub fn is_deletable(&self, v: VertexId) -> bool {
+        if !self.tracks_segments() || !self.tracks_vertex_edges() {
+            return false;
+        }
+        let Some(first) = self.vertex_edge(v) else {
+            return false;
+        };
+        let tag = self.tracks_tags().then(|| self.tag(first.triangle()));
+        self.star(v).all(|e| {
+            self.dest(e) != GHOST
+                && !self.is_segment(e)
+                && tag.is_none_or(|tag| self.tag(e.triangle()) == tag)
+        })
+    }
+
+    /// Deletes vertex `v` (see the module documentation) from a constrained Delaunay mesh, which
+    /// stays constrained Delaunay (exact predicates `P`). Returns the triangles that now fill
+    /// its old star, or `None` when `v` is kept and the mesh left as it is
+    /// ([`Self::is_deletable`] says no, or its star is degenerate). The vertex keeps its id
+    /// and point, in no triangle (see [`Self::remove_vertices`]). Two triangle slots are
+    /// freed: the last slots move into them, so that the slots stay `0 .. triangle_count()`
+    /// (ids of the moved triangles change; twins, segment ids, tags and vertex edges follow).
+    pub fn delete_vertex<P: Predicates>(&mut self, v: VertexId) -> Option<Vec<TriangleId>> {
+        if !self.is_deletable(v) {
+            return None;
+        }
+        let link: Vec<VertexId> = self.star(v).map(|e| self.dest(e)).collect();
+        // The edges to check afterwards, as vertex pairs (flips renumber half-edges).
+        let mut stack: Vec<(VertexId, VertexId)> = Vec::new();
+        // The flips planned on the link alone, so that a degenerate star leaves the mesh as it
+        // is. Flipping edge v → w_i, in (v, w_i, w_i+1) and (w_i, v, w_i-1), makes them
+        // (v, w_i-1, w_i+1) and (w_i-1, w_i, w_i+1), both counter-clockwise exactly when the
+        // quadrilateral is strictly convex; w_i leaves v's link.
+        let mut ring = link.clone();
+        let mut plan: Vec<(VertexId, (VertexId, VertexId))> = Vec::new();
+        let pv = self.point(v);
+        while ring.len() > 3 {
+            let k = ring.len();
+            let ear = (0..k).find(|&i| {
+                let (a, b, c) = (ring[(i + k - 1) % k], ring[i], ring[(i + 1) % k]);
+                let (pa, pb, pc) = (self.point(a), self.point(b), self.point(c));
+                P::orient2d(pa, pb, pc) > 0.0 && P::orient2d(pv, pa, pc) > 0.0
+            });
+            // None: a degenerate star, `v` stays.
+            let i = ear?;
+            plan.push((ring[i], (ring[(i + k - 1) % k], ring[(i + 1) % k])));
+            ring.remove(i);
+        }
+        for (w, diagonal) in plan {
+            let e = self.find_edge(v, w).expect("an edge of the star");
+            self.flip(e);
+            stack.push(diagonal);
+        }
+        let star: Vec<EdgeId> = self.star(v).collect();
+        // Degree 3: (v, a, b), (v, b, c), (v, c, a) become (a, b, c) in the first one's slot.
+        let edges = [star[0], star[1], star[2]];
+        let [a, b, c] = edges.map(|e| self.dest(e));
+        let outer = edges.map(|e| self.twin(e.next()));
+        let [t0, t1, t2] = edges.map(EdgeId::triangle);
+        self.set_corners(t0, [a, b, c]);
+        for (k, &o) in outer.iter().enumerate() {
+            self.link(t0.edge(k as u32), o);
+        }
+        // Vertex edges of a, b, c into t0, segment ids from the outer twins.
+        self.refresh(&[t0.raw()], &[]);
+        self.vertex_edge[v.index()] = NONE;
+        self.remove_slot(t1.max(t2));
+        self.remove_slot(t1.min(t2));
+        let start = self
+            .find_edge(a, b)
+            .expect("the merged triangle")
+            .triangle();
+        let hole = self.hole(start, &link);
+        debug_assert_eq!(hole.len(), link.len() - 2);
+        for &t in &hole {
+            stack.extend(t.edges().map(|e| (self.origin(e), self.dest(e))));
+        }
+        let mut lawson = BetweenSegments {
+            record: true,
+            flipped: Vec::new(),
+        };
+        self.legalize::<P, _>(&mut stack, &mut lawson);
+        // Flips keep their two slots: the hole's slots are still its triangles (and, were
+        // rounding to flip an edge of its polygon, the flipped ones beyond).
+        let mut made = hole;
+        made.extend(lawson.flipped);
+        made.sort_unstable();
+        made.dedup();
+        Some(made)
+    }
+
+    /// The triangles inside the polygon `link` (a vertex's old star, counter-clockwise) from
+    /// triangle `start` inside it: across every edge that is not one of the polygon's, into
+    /// triangles whose corners are all on it.
+    fn hole(&self, start: TriangleId, link: &[VertexId]) -> Vec<TriangleId> {
+        let k = link.len();
+        let polygon_edge = |x: VertexId, y: VertexId| {
+            link.iter()
+                .position(|&w| w == x)
+                .is_some_and(|i| link[(i + 1) % k] == y || link[(i + k - 1) % k] == y)
+        };
+        let mut hole = vec![start];
+        let mut i = 0;
+        while i < hole.len() {
+            let t = hole[i];
+            i += 1;
+            for e in t.edges() {
+                if polygon_edge(self.origin(e), self.dest(e)) {
+                    continue;
+                }
+                let n = self.twin(e).triangle();
+                if !hole.contains(&n) && self.triangle(n).iter().all(|w| link.contains(w)) {
+                    hole.push(n);
+                }
+            }
+        }
+        hole
+    }
+
+    /// Frees triangle slot `t`, which no half-edge's twin and no vertex edge refers to: the
+    /// last slot's triangle moves into it (its neighbours' twins, its corners' vertex edges,
+    /// its segment ids and tag follow), and the arrays shrink by one triangle.
+    fn remove_slot(&mut self, t: TriangleId) {
+        let last = self.triangle_count() - 1;
+        let (to, from) = (3 * t.index(), 3 * last as usize);
+        if t.raw() != last {
+            for k in 0..3 {
+                let corner = self.corners[from + k];
+                let twin = self.twins[from + k];
+                self.corners[to + k] = corner;
+                self.twins[to + k] = twin;
+                self.twins[twin as usize] = (to + k) as u32;
+                if !self.segment.is_empty() {
+                    self.segment[to + k] = self.segment[from + k];
+                }
+                if corner != GHOST.raw()
+                    && !self.vertex_edge.is_empty()
+                    && self.vertex_edge[corner as usize] == (from + k) as u32
+                {
+                    self.vertex_edge[corner as usize] = (to + k) as u32;
+                }
+            }
+            if !self.tag.is_empty() {
+                self.tag[t.index()] = self.tag[last as usize];
+            }
+        }
+        self.corners.truncate(from);
+        self.twins.truncate(from);
+        if !self.segment.is_empty() {
+            self.segment.truncate(from);
+        }
+        if !self.tag.is_empty() {
+            self.tag.truncate(last as usize);
+        }
+    }
+
+    /// Removes the vertices for which `keep` is false, none of which may be a corner (vertices
+    /// deleted by [`Self::delete_vertex`]); the others keep their order, renumbered from 0
+    /// (corners and vertex edges follow). Returns each old vertex's new id, [`NONE`] for the
+    /// removed ones.
+    pub fn remove_vertices(&mut self, keep: impl Fn(VertexId) -> bool) -> Vec<u32> {
+        let n = self.points.len();
+        let mut new_id = vec![NONE; n];
+        let mut count = 0;
+        for (v, id) in new_id.iter_mut().enumerate() {
+            if keep(VertexId::new(v as u32)) {
+                *id = count as u32;
+                self.points[count] = self.points[v];
+                if !self.vertex_edge.is_empty() {
+                    self.vertex_edge[count] = self.vertex_edge[v];
+                }
+                count += 1;
+            }
+        }
+        self.points.truncate(count);
+        if !self.vertex_edge.is_empty() {
+            self.vertex_edge.truncate(count);
+        }
+        for c in self.corners.iter_mut() {
+            if *c != GHOST.raw() {
+                *c = new_id[*c as usize];
+                assert!(*c != NONE, "a removed vertex is a corner");
+            }
+        }
+        new_id
+    }
+}
