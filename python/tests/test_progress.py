@@ -33,8 +33,11 @@ def test_phases_come_in_order_with_their_counts():
     assert done == estimate and inserted <= done <= 3 * inserted, (refinement[-1], inserted)
     seen20 = []
     out20 = triangle_rs.triangulate(SQUARE, "pq20a0.0001", progress=lambda *report: seen20.append(report))
-    last20 = [(d, e) for phase, d, e in seen20 if phase == "refinement"][-1]
-    assert last20 == (len(out20["vertices"]) - 4,) * 2, "one run below 28.6°"
+    done20, estimate20 = [(d, e) for phase, d, e in seen20 if phase == "refinement"][-1]
+    # One run below 28.6°: its vertices, those kept and the few that Chew's rule deleted again
+    # (free vertices in the diametral circle of a subsegment being split).
+    kept20 = len(out20["vertices"]) - 4
+    assert done20 == estimate20 and kept20 <= done20 <= kept20 + kept20 // 10, ((done20, estimate20), kept20)
 
 
 def test_the_triangulateio_style_takes_progress_too():
