@@ -9,7 +9,7 @@
 
 mod common;
 
-use common::examples::{data_dir, example_files};
+use common::examples::{data_dir, example_files, example_named};
 use common::quality::engine;
 use triangle_rs::data::Hooks;
 
@@ -32,10 +32,7 @@ fn deleted_vertices_leave_the_numbering_compact() {
         ("la.poly", "pq30"),
     ];
     for (name, switches) in cases {
-        let file = files
-            .iter()
-            .find(|f| f.name == name)
-            .unwrap_or_else(|| panic!("{name} is missing"));
+        let file = example_named(&files, name);
         let mut input = file.input.clone();
         let n = input.points.len();
         input.attribute_count = 2;

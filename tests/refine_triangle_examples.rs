@@ -32,7 +32,7 @@ use std::collections::{HashMap, HashSet};
 
 use common::call::{MeshInput, Triangulation};
 use common::checks::{convex_hull, orient2d};
-use common::examples::{area_switch, data_dir, example_files, Kind};
+use common::examples::{area_switch, data_dir, example_files, example_named, Kind};
 use common::points::Point;
 use common::pslg::{polygon_area, with_hull_segments};
 use common::pslg_checks::{check_constrained_delaunay, segment_chains, MeshView};
@@ -587,10 +587,7 @@ fn the_issues_five_degree_wedges_are_refined() {
 fn beyond_the_guaranteed_angle_triangles_examples_end_at_28_6_degrees_or_better() {
     let files = example_files(&data_dir());
     for (name, switches) in [("la.poly", "pq35"), ("A.poly", "pq40")] {
-        let file = files
-            .iter()
-            .find(|f| f.name == name)
-            .unwrap_or_else(|| panic!("{name} is missing from Triangle's examples"));
+        let file = example_named(&files, name);
         let example = Example {
             name: name.to_string(),
             input: file.input.clone(),
@@ -643,10 +640,7 @@ fn above_30_degrees_refinement_does_not_cascade_where_triangles_does_not() {
         ("face.poly", "pq34"),
     ];
     for (name, switches) in cases {
-        let file = files
-            .iter()
-            .find(|f| f.name == name)
-            .unwrap_or_else(|| panic!("{name} is missing from Triangle's examples"));
+        let file = example_named(&files, name);
         let example = Example {
             name: name.to_string(),
             input: file.input.clone(),

@@ -119,6 +119,15 @@ pub fn area_switch(points: &[Point]) -> String {
     format!("a{}", 2f64.powi(area.log2().floor() as i32))
 }
 
+/// The example file called `name` among `files`; panics when it is missing (the differential
+/// tests must not be skipped).
+pub fn example_named<'f>(files: &'f [ExampleFile], name: &str) -> &'f ExampleFile {
+    files
+        .iter()
+        .find(|f| f.name == name)
+        .unwrap_or_else(|| panic!("{name} is missing from Triangle's examples"))
+}
+
 /// Every example file of `dir`, sorted by name.
 pub fn example_files(dir: &Path) -> Vec<ExampleFile> {
     let mut names: Vec<String> = std::fs::read_dir(dir)
