@@ -354,6 +354,12 @@ impl Mesh {
         VertexId::new((self.points.len() - 1) as u32)
     }
 
+    /// Moves vertex `v` to `p` (the caller sees that its triangles stay counter-clockwise and
+    /// restores what else it needs, such as the Delaunay property).
+    pub fn move_point(&mut self, v: VertexId, p: Point) {
+        self.points[v.index()] = p;
+    }
+
     /// Replaces the points (the vertex ids stay: the new list must give every corner a point),
     /// returning the old ones.
     pub fn replace_points(&mut self, points: Vec<Point>) -> Vec<Point> {

@@ -50,4 +50,23 @@ impl<P: Predicates> Constrainer<P> {
         }
         true
     }
+
+    /// Moves vertex `v` to `p` if each of its triangles stays strictly counter-clockwise there
+    /// (`p` in the kernel of its star), and restores the constrained Delaunay property by flips
+    /// from its star and link; returns whether it moved.
+    pub fn move_vertex(&mut self, v: VertexId, p: Point) -> bool {
+        let mesh = self.inserter.mesh();
+        let mut edges = Vec::new();
+        for e in mesh.star(v) {
+            let (a, b) = (mesh.dest(e), mesh.apex(e));
+            if a == GHOST || b == GHOST || P::orient2d(p, mesh.point(a), mesh.point(b)) <= 0.0 {
+                return false;
+            }
+            edges.push((v, a));
+            edges.push((a, b));
+        }
+        self.inserter.mesh_mut().move_point(v, p);
+        self.restore_delaunay(edges);
+        true
+    }
 }

@@ -40,6 +40,26 @@ impl<'a> Attributes<'a> {
         }
     }
 
+    /// Sets the attributes of vertex `w` to those at affine frame coordinates `(xi, eta)` in
+    /// triangle `(a, b, c)` (`w` may be a corner: a vertex moved within its star).
+    pub(super) fn set_in_triangle(
+        &mut self,
+        w: VertexId,
+        [a, b, c]: [VertexId; 3],
+        xi: f64,
+        eta: f64,
+    ) {
+        let k = self.count;
+        for i in 0..k {
+            let (va, vb, vc) = (
+                self.values[a.index() * k + i],
+                self.values[b.index() * k + i],
+                self.values[c.index() * k + i],
+            );
+            self.values[w.index() * k + i] = va + xi * (vb - va) + eta * (vc - va);
+        }
+    }
+
     /// Keeps the rows of the vertices `v` for which `keep(v)` holds, in order.
     pub(super) fn retain_rows(&mut self, keep: impl Fn(usize) -> bool) {
         let k = self.count;

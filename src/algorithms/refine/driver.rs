@@ -9,7 +9,7 @@ use super::report::{Report, Warning};
 use super::{inside, Quality, VertexKind, GUARANTEED_ANGLE};
 use crate::algorithms::constrain::Constrainer;
 use crate::algorithms::domain::Domain;
-use crate::geometry::Predicates;
+use crate::geometry::{min_angle_sin2, Predicates};
 use crate::mesh::Mesh;
 
 /// Above that angle, refinement first runs straight toward it with a budget of this many new
@@ -29,6 +29,9 @@ const GUARANTEED_MULTIPLE: u64 = 4;
 /// and not below this many in all (a few seconds of work).
 const RUNAWAY_PER_TRIANGLE: u64 = 1000;
 const RUNAWAY_MINIMUM: u64 = 1_000_000;
+/// Up to this many domain triangles, the mesh before smoothing and decimation is kept aside, to
+/// stand if they made it worse (a copy of the mesh, which is small then).
+const GUARDED_IMPROVEMENT: u64 = 1 << 20;
 /// Failing that, the mesh refined to the guaranteed angle goes on toward the asked one with a
 /// budget of this many new vertices per triangle it has (plus a few).
 const UNGUARANTEED_BUDGET_PER_TRIANGLE: u64 = 2;
@@ -94,6 +97,11 @@ pub fn refine<P: Predicates>(
             driver.run_within(None)
         }
     };
+    // The finished mesh is smoothed and decimated (not under `S`, which counts insertions),
+    // in the frame it was refined in.
+    if outcome == Outcome::Finished && quality.max_steiner.is_none() {
+        outcome = driver.improve();
+    }
     // In a frame finer than the caller's: the mesh goes onto the caller's grid, and what
     // rounding spoiled there is refined again, at the angle of the last run, with new points on
     // that grid (where rounding does not cost the angle, this changes nothing).
@@ -105,7 +113,7 @@ pub fn refine<P: Predicates>(
             off_grid = true;
         }
     }
-    // Vertices deleted by Chew's rule leave the numbering: Steiner points stay in order after
+    // Vertices deleted by Chew's rule and by decimation leave the numbering: Steiner points stay in order after
     // the input's.
     driver.refinement.drop_deleted_vertices();
     let tally = driver.refinement.tally();
@@ -314,6 +322,31 @@ impl<P: Predicates> Driver<'_, '_, P> {
         }
     }
 
+    /// Smooths and decimates the finished mesh ([`Refinement::improve`]) and refines again
+    /// what that left bad (rarely anything: a tie among cocircular vertices when a vertex is
+    /// put back, an area bound after flips, a subsegment that a moved vertex encroaches). Up to
+    /// [`GUARDED_IMPROVEMENT`] triangles, the mesh before stands if the one after has more
+    /// triangles or a smaller angle (with `Y`, new points may go where refinement had left bad
+    /// triangles whole). Finished, or cancelled.
+    fn improve(&mut self) -> Outcome {
+        let triangles = self.inside_triangle_count();
+        let mut before = (triangles <= GUARDED_IMPROVEMENT).then(|| self.refinement.copy_aside());
+        let smallest = smallest_angle_sin2(self.refinement.mesh());
+        self.refinement.improve();
+        self.refinement.forget_kept_whole();
+        let outcome = self.run_within(None);
+        if let Some(before) = before.as_mut() {
+            let worse = outcome != Outcome::Finished
+                || self.inside_triangle_count() > triangles
+                || smallest_angle_sin2(self.refinement.mesh()) < smallest;
+            if worse && outcome != Outcome::Cancelled {
+                self.refinement.exchange(before);
+                return Outcome::Finished;
+            }
+        }
+        outcome
+    }
+
     /// Seeds the unrefined domain with lattice points where a fixed area bound governs
     /// ([`super::lattice`]): not with the user's test or an `S` budget (there is no runaway limit
     /// then), nor with `Y`/`YY` (segments kept whole: the band between a lattice and a segment
@@ -349,6 +382,14 @@ impl<P: Predicates> Driver<'_, '_, P> {
     fn size_estimate(&self) -> u64 {
         size_estimate::<P>(self.refinement.mesh(), self.domain, self.quality)
     }
+}
+
+/// The sine squared of the smallest angle of the domain's triangles (1 for none).
+fn smallest_angle_sin2(mesh: &Mesh) -> f64 {
+    mesh.triangles()
+        .filter(|&t| inside(mesh, t))
+        .map(|t| min_angle_sin2(mesh.triangle(t).map(|v| mesh.point(v))))
+        .fold(1.0, f64::min)
 }
 
 /// The resolution refinement works at, from the extent of the vertices: the squared floor

@@ -15,6 +15,8 @@ use super::polling::Polling;
 use super::queue::{BadQueue, BadTriangle, QueueOrder};
 use super::split_point::AngleBound;
 use super::walk::{walk, Walk};
+
+mod improvement; // `Refinement::improve`: smoothing and decimation of the finished mesh
 use super::{inside, Quality, VertexKind};
 use crate::algorithms::constrain::Constrainer;
 use crate::algorithms::delaunay::Location;
@@ -169,6 +171,12 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
 
     pub(super) fn tally(&self) -> Tally {
         self.tally
+    }
+
+    /// Forgets the bad triangles counted as kept whole (before a run that checks every triangle
+    /// again and counts those still left).
+    pub(super) fn forget_kept_whole(&mut self) {
+        self.tally.kept_whole = 0;
     }
 
     /// Sets the order of the skinny triangles in the queue (for the runs that follow: it is
@@ -456,29 +464,10 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
         let mesh = self.mesh();
         let corners = mesh.triangle(t);
         let [pa, pb, pc] = corners.map(|v| mesh.point(v));
-        let area = 0.5 * P::orient2d(pa, pb, pc);
         let skinny = self
             .angle
             .skinny(mesh, &self.kinds, &self.cdt.ends, corners, [pa, pb, pc]);
-        let quality = self.settings.quality;
-        let bad = skinny.is_some() || {
-            let regional = if quality.variable_area {
-                self.settings
-                    .domain
-                    .max_area
-                    .get(mesh.tag(t) as usize)
-                    .copied()
-                    .unwrap_or(-1.0)
-            } else {
-                -1.0
-            };
-            let too_big =
-                quality.max_area.is_some_and(|m| area > m) || (regional > 0.0 && area > regional);
-            too_big
-                || quality
-                    .user_test
-                    .is_some_and(|f| f(pa[0], pa[1], pb[0], pb[1], pc[0], pc[1], area))
-        };
+        let bad = skinny.is_some() || self.too_big(t, [pa, pb, pc]);
         if bad {
             let bucket = match skinny {
                 Some(shortest) => match self.order {
@@ -497,6 +486,28 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
                 slot: t,
             });
         }
+    }
+
+    /// Whether triangle `t` at `[pa, pb, pc]` is too big for the area bounds (global or its
+    /// region's) or bad by the user's test.
+    fn too_big(&self, t: TriangleId, [pa, pb, pc]: [Point; 3]) -> bool {
+        let quality = self.settings.quality;
+        let area = 0.5 * P::orient2d(pa, pb, pc);
+        let regional = if quality.variable_area {
+            self.settings
+                .domain
+                .max_area
+                .get(self.mesh().tag(t) as usize)
+                .copied()
+                .unwrap_or(-1.0)
+        } else {
+            -1.0
+        };
+        quality.max_area.is_some_and(|m| area > m)
+            || (regional > 0.0 && area > regional)
+            || quality
+                .user_test
+                .is_some_and(|f| f(pa[0], pa[1], pb[0], pb[1], pc[0], pc[1], area))
     }
 
     /// Splits bad triangle `t` at its split point, or — when a segment hides the point or the

@@ -35,6 +35,11 @@ impl AngleBound {
         }
     }
 
+    /// sin² θ (0 when there is no bound).
+    pub(super) fn sin2(&self) -> f64 {
+        (1.0 - self.cos2_min_angle).max(0.0)
+    }
+
     /// If triangle `corners` (at `points`) has an angle below θ and is not excused by
     /// [`Self::is_excused_by_small_input_angle`]: the squared length of its shortest edge.
     /// `ends`: the ends of each segment id, as given.
