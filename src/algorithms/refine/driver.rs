@@ -80,6 +80,7 @@ pub fn refine<P: Predicates>(
         quality,
         runaway_limit,
         warnings: Vec::new(),
+        improved: false,
     };
     let from_the_start = quality.caller_grid.is_some_and(|c| c.from_the_start);
     if from_the_start && !driver.refinement.move_onto_caller_grid() {
@@ -99,7 +100,7 @@ pub fn refine<P: Predicates>(
     };
     // The finished mesh is smoothed and decimated (not under `S`, which counts insertions),
     // in the frame it was refined in.
-    if outcome == Outcome::Finished && quality.max_steiner.is_none() {
+    if outcome == Outcome::Finished && !driver.improved {
         outcome = driver.improve();
     }
     // In a frame finer than the caller's: the mesh goes onto the caller's grid, and what
@@ -164,6 +165,8 @@ struct Driver<'r, 'q, P: Predicates> {
     runaway_limit: Option<u64>,
     /// The warnings of the runs, in order.
     warnings: Vec<Warning>,
+    /// Whether the live state is improved already ([`Self::improve`]).
+    improved: bool,
 }
 
 impl<P: Predicates> Driver<'_, '_, P> {
@@ -303,13 +306,20 @@ impl<P: Predicates> Driver<'_, '_, P> {
         if straight_points > OTHER_ORDER_TRY {
             return Outcome::Finished;
         }
+        // Each mesh is compared improved ([`Self::improve`]).
+        if self.improve() == Outcome::Cancelled {
+            return Outcome::Cancelled;
+        }
         let straight_triangles = self.inside_triangle_count();
         // Live: the unrefined state, in the other order; aside: the straight run's.
         self.refinement.exchange(aside);
         self.refinement.set_order(QueueOrder::WorstAngle);
         self.refinement.set_angle(angle);
         self.seed();
-        let outcome = self.run_within(Some(self.steiner_points() + straight_points));
+        let mut outcome = self.run_within(Some(self.steiner_points() + straight_points));
+        if outcome == Outcome::Finished {
+            outcome = self.improve();
+        }
         let better =
             outcome == Outcome::Finished && self.inside_triangle_count() < straight_triangles;
         if !better {
@@ -329,6 +339,10 @@ impl<P: Predicates> Driver<'_, '_, P> {
     /// triangles or a smaller angle (with `Y`, new points may go where refinement had left bad
     /// triangles whole). Finished, or cancelled.
     fn improve(&mut self) -> Outcome {
+        self.improved = true;
+        if self.quality.max_steiner.is_some() {
+            return Outcome::Finished; // `S` counts insertions: the mesh stays as refined
+        }
         let triangles = self.inside_triangle_count();
         let mut before = (triangles <= GUARDED_IMPROVEMENT).then(|| self.refinement.copy_aside());
         let smallest = smallest_angle_sin2(self.refinement.mesh());
