@@ -5,7 +5,8 @@
 //! corner of an output triangle (no deleted vertex left unreferenced), the input vertices keep
 //! their numbers, coordinates and markers, and every vertex's attributes are its own (the
 //! input's attributes replaced by linear functions of the coordinates, which interpolation
-//! reproduces: a row shifted by the renumbering would not match).
+//! reproduces: a row shifted by the renumbering would not match, nor would a vertex moved by
+//! smoothing without its attributes interpolated again).
 
 mod common;
 
@@ -76,8 +77,13 @@ fn deleted_vertices_leave_the_numbering_compact() {
         }
         if (name, switches) == ("diamond_02_00009.node", "q") {
             // Triangle deletes the circumcentres (0.1, 0.7) and (0.3, 0.2) here and makes 20
-            // triangles; without deletion we made 26.
-            assert_eq!(out.counts.triangles, 20, "{name} {switches}");
+            // triangles; without deletion we made 26 (with the improvement of the finished
+            // mesh, 19).
+            assert!(
+                out.counts.triangles <= 20,
+                "{name} {switches}: {}",
+                out.counts.triangles
+            );
         }
     }
 }

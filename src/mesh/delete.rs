@@ -116,7 +116,7 @@ impl Mesh {
     /// The triangles inside the polygon `link` (a vertex's old star, counter-clockwise) from
     /// triangle `start` inside it: across every edge that is not one of the polygon's, into
     /// triangles whose corners are all on it.
-    fn hole(&self, start: TriangleId, link: &[VertexId]) -> Vec<TriangleId> {
+    pub(super) fn hole(&self, start: TriangleId, link: &[VertexId]) -> Vec<TriangleId> {
         let k = link.len();
         let polygon_edge = |x: VertexId, y: VertexId| {
             link.iter()
@@ -144,7 +144,7 @@ impl Mesh {
     /// Frees triangle slot `t`, which no half-edge's twin and no vertex edge refers to: the
     /// last slot's triangle moves into it (its neighbours' twins, its corners' vertex edges,
     /// its segment ids and tag follow), and the arrays shrink by one triangle.
-    fn remove_slot(&mut self, t: TriangleId) {
+    pub(super) fn remove_slot(&mut self, t: TriangleId) {
         let last = self.triangle_count() - 1;
         let (to, from) = (3 * t.index(), 3 * last as usize);
         if t.raw() != last {

@@ -26,6 +26,7 @@ mod legalize;
 mod ops;
 pub mod raw;
 mod star;
+mod unsplit;
 mod walk;
 
 pub use ids::{EdgeId, TriangleId, VertexId};

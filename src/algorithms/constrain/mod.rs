@@ -160,6 +160,13 @@ impl<P: Predicates> Constrainer<P> {
         self.inserter.delete_vertex(v)
     }
 
+    /// Deletes vertex `v` between two subsegments of one segment, which become one, keeping
+    /// the triangulation constrained Delaunay (see [`Mesh::delete_segment_vertex`]): the
+    /// triangles made, or `None` when it stays.
+    pub fn delete_segment_vertex(&mut self, v: VertexId) -> Option<Vec<TriangleId>> {
+        self.inserter.delete_segment_vertex(v)
+    }
+
     /// Drops deleted vertices from the numbering (see [`Mesh::remove_vertices`]).
     pub fn remove_vertices(&mut self, keep: impl Fn(VertexId) -> bool) -> Vec<u32> {
         self.inserter.remove_vertices(keep)

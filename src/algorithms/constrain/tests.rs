@@ -308,3 +308,102 @@ fn deleted_vertices_leave_the_cdt_of_the_others() {
     assert!(deleted_in_all > 1000, "{deleted_in_all} deletions");
     assert!(kept_deletable > 0, "no degenerate star met");
 }
+
+/// Deleting a vertex between two subsegments (`Mesh::delete_segment_vertex`, the improvement
+/// of a finished refinement): CDTs of random points on a grid of 1/1024 with segments along
+/// some of their Delaunay edges (hull edges too: a side with the vertex at infinity), each
+/// split at its midpoint (exact) as refinement splits one; then the midpoints are deleted in
+/// a random order. After each deletion the mesh is valid and constrained Delaunay, two triangle
+/// slots fewer, the merged subsegment is one segment edge with the segment's id, the vertex is
+/// in no triangle and every other tracked vertex edge leaves its vertex; a vertex kept leaves
+/// the mesh as it was. Input vertices and vertices on no segment are never deleted.
+#[test]
+fn deleted_segment_vertices_leave_one_subsegment_and_a_cdt() {
+    let (mut deleted_in_all, mut on_hull) = (0, 0);
+    for seed in 0..300u64 {
+        let mut s = seed;
+        let n = 6 + (splitmix64(&mut s) % 60) as usize;
+        let mut pts: Vec<Point> = (0..n)
+            .map(|_| {
+                let k = |s: &mut u64| (splitmix64(s) % 1024) as f64 / 1024.0;
+                [k(&mut s), k(&mut s)]
+            })
+            .collect();
+        pts.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        pts.dedup();
+        let n = pts.len();
+        let dt = cdt_of(&pts, &[]);
+        let m = dt.mesh();
+        let mut segments = Vec::new();
+        for _ in 0..1 + splitmix64(&mut s) % 8 {
+            let e = crate::mesh::EdgeId::new((splitmix64(&mut s) % m.edge_count() as u64) as u32);
+            let (a, b) = (m.origin(e), m.dest(e));
+            if a != GHOST && b != GHOST && !segments.contains(&(a.raw(), b.raw())) {
+                segments.push((a.raw(), b.raw()));
+            }
+        }
+        let mut cdt = cdt_of(&pts, &segments);
+        // Split each segment at its midpoint.
+        let mut midpoints = Vec::new();
+        for &(a, b) in &segments {
+            let (a, b) = (VertexId::new(a), VertexId::new(b));
+            let Some(e) = cdt.mesh().find_edge(a, b) else {
+                continue;
+            };
+            let (pa, pb) = (cdt.mesh().point(a), cdt.mesh().point(b));
+            let mid = [0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])];
+            if pts.contains(&mid) {
+                continue;
+            }
+            let id = cdt.mesh().segment_of(e);
+            let v = cdt.add_point(mid);
+            cdt.insert_at(v, Location::OnEdge(e)).unwrap();
+            midpoints.push((v, a, b, id));
+        }
+        for v in (0..n as u32).map(VertexId::new) {
+            assert!(
+                cdt.delete_segment_vertex(v).is_none(),
+                "seed {seed}: input {v}"
+            );
+        }
+        for i in (1..midpoints.len()).rev() {
+            midpoints.swap(i, (splitmix64(&mut s) % (i as u64 + 1)) as usize);
+        }
+        for &(v, a, b, id) in &midpoints {
+            let (before, triangles_before) =
+                (cdt.mesh().triangle_count(), triangle_set(cdt.mesh()));
+            let hull = {
+                let m = cdt.mesh();
+                m.star(v).any(|e| m.dest(e) == GHOST)
+            };
+            let m = match cdt.delete_segment_vertex(v) {
+                Some(made) => {
+                    deleted_in_all += 1;
+                    on_hull += usize::from(hull);
+                    let m = cdt.mesh();
+                    assert_eq!(m.triangle_count() + 2, before, "seed {seed}");
+                    assert!(m.vertex_edge(v).is_none(), "seed {seed}");
+                    assert!(made.iter().all(|t| t.raw() < m.triangle_count()));
+                    assert!(made.iter().all(|&t| !m.triangle(t).contains(&v)));
+                    let e = m.find_edge(a, b).expect("the merged subsegment");
+                    assert!(m.is_segment(e) && m.segment_of(e) == id, "seed {seed}");
+                    m
+                }
+                None => {
+                    let m = cdt.mesh();
+                    assert_eq!(triangle_set(m), triangles_before, "seed {seed}: {v} kept");
+                    m
+                }
+            };
+            m.check_topology()
+                .unwrap_or_else(|e| panic!("seed {seed}: {e}"));
+            for w in (0..m.points().len() as u32).map(VertexId::new) {
+                let e = m.vertex_edge(w);
+                assert!(e.is_none_or(|e| m.origin(e) == w), "seed {seed}: {w}");
+            }
+            assert_constrained_delaunay(m, seed);
+        }
+    }
+    assert!(deleted_in_all > 500, "{deleted_in_all} deleted");
+    assert!(on_hull > 50, "{on_hull} deleted on the hull");
+}

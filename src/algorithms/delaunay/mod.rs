@@ -199,6 +199,14 @@ impl<P: Predicates> Inserter<P> {
         Some(made)
     }
 
+    /// Deletes vertex `v` between two subsegments of one segment (see
+    /// [`Mesh::delete_segment_vertex`]); the next walk starts in the triangles made.
+    pub fn delete_segment_vertex(&mut self, v: VertexId) -> Option<Vec<TriangleId>> {
+        let made = self.mesh.delete_segment_vertex::<P>(v)?;
+        self.last = made[0];
+        Some(made)
+    }
+
     /// Removes the vertices deleted by [`Self::delete_vertex`] for which `keep` is false (see
     /// [`Mesh::remove_vertices`]); returns each old vertex's new id.
     pub fn remove_vertices(&mut self, keep: impl Fn(VertexId) -> bool) -> Vec<u32> {

@@ -340,8 +340,11 @@ impl<P: Predicates> Driver<'_, '_, P> {
     /// triangles whole). Finished, or cancelled.
     fn improve(&mut self) -> Outcome {
         self.improved = true;
-        if self.quality.max_steiner.is_some() {
-            return Outcome::Finished; // `S` counts insertions: the mesh stays as refined
+        // Not under `S` (which counts insertions), nor with the user's test (which would be
+        // asked about every triangle tried: slow where it is a script's callback, and it may
+        // answer by a state of its own, as Triangle's callers' tests may).
+        if self.quality.max_steiner.is_some() || self.quality.user_test.is_some() {
+            return Outcome::Finished;
         }
         let triangles = self.inside_triangle_count();
         let mut before = (triangles <= GUARDED_IMPROVEMENT).then(|| self.refinement.copy_aside());

@@ -27,6 +27,7 @@
 use std::f64::consts::FRAC_1_SQRT_2;
 
 use super::Refinement;
+use crate::algorithms::delaunay::Location;
 use crate::algorithms::refine::{inside, VertexKind};
 use crate::geometry::{frame_coordinates, min_angle_sin2, Point, Predicates};
 use crate::mesh::{TriangleId, VertexId};
@@ -67,15 +68,21 @@ impl<P: Predicates> Refinement<'_, '_, P> {
             .map(VertexId::new)
             .filter(|v| matches!(self.kinds[v.index()], VertexKind::Free | VertexKind::Seed))
             .collect();
+        let mut on_segments: Vec<VertexId> = (0..self.kinds.len() as u32)
+            .map(VertexId::new)
+            .filter(|v| matches!(self.kinds[v.index()], VertexKind::OnSegment { .. }))
+            .collect();
         let mut link = Vec::new();
         for _ in 0..ROUNDS {
             let mut moved = 0;
             for &w in &free {
                 moved += usize::from(self.try_smoothing(w, floor, &mut link));
             }
-            let before = free.len();
+            let before = free.len() + on_segments.len();
             free.retain(|&w| !self.try_deleting(w, floor));
-            if (moved == 0 && free.len() == before) || self.polling.cancelled() {
+            on_segments.retain(|&w| !self.try_unsplitting(w, floor));
+            let after = free.len() + on_segments.len();
+            if (moved == 0 && after == before) || self.polling.cancelled() {
                 break;
             }
         }
@@ -214,13 +221,7 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         let Some(made) = self.cdt.delete_vertex(w) else {
             return false;
         };
-        let good = |t: TriangleId| {
-            let mesh = self.mesh();
-            let points = mesh.triangle(t).map(|v| mesh.point(v));
-            !inside(mesh, t)
-                || (min_angle_sin2(points) >= floor * (1.0 + MARGIN) && !self.too_big(t, points))
-        };
-        if made.iter().all(|&t| good(t)) {
+        if made.iter().all(|&t| self.good_enough(t, floor)) {
             self.kinds[w.index()] = VertexKind::Deleted;
             return true;
         }
@@ -231,6 +232,47 @@ impl<P: Predicates> Refinement<'_, '_, P> {
             return true;
         }
         false
+    }
+
+    /// Deletes vertex `w`, put on a segment by refinement, if the subsegment its two
+    /// subsegments become is not encroached and the triangles that fill its star are good
+    /// enough (as for [`Self::try_deleting`]); else puts it back. Whether it stays deleted.
+    fn try_unsplitting(&mut self, w: VertexId, floor: f64) -> bool {
+        if self.polling.poll(self.work, || 0) {
+            return false;
+        }
+        let mesh = self.mesh();
+        let ends: Vec<VertexId> = mesh
+            .star(w)
+            .filter(|&e| mesh.is_segment(e))
+            .map(|e| mesh.dest(e))
+            .collect();
+        let &[a, b] = ends.as_slice() else {
+            return false;
+        };
+        let Some(made) = self.cdt.delete_segment_vertex(w) else {
+            return false;
+        };
+        let e = self.mesh().find_edge(a, b).expect("the merged subsegment");
+        let encroached = self.encroachment.apex_encroaches(self.mesh(), e);
+        if !encroached && made.iter().all(|&t| self.good_enough(t, floor)) {
+            self.kinds[w.index()] = VertexKind::Deleted;
+            return true;
+        }
+        let _ = self.cdt.insert_at(w, Location::OnEdge(e));
+        self.cdt.settle(w);
+        false
+    }
+
+    /// Whether triangle `t` may be made by a deletion: outside the domain, or its smallest
+    /// angle's sine squared at least `floor` (with the margin) and the area bounds kept.
+    fn good_enough(&self, t: TriangleId, floor: f64) -> bool {
+        let mesh = self.mesh();
+        if mesh.is_ghost(t) || !inside(mesh, t) {
+            return true;
+        }
+        let points = mesh.triangle(t).map(|v| mesh.point(v));
+        min_angle_sin2(points) >= floor * (1.0 + MARGIN) && !self.too_big(t, points)
     }
 
     /// The sine squared of the smallest angle among the domain's triangles whose smallest angle
