@@ -51,15 +51,19 @@ impl<P: Predicates> Constrainer<P> {
         true
     }
 
-    /// Moves vertex `v` to `p` if each of its triangles stays strictly counter-clockwise there
-    /// (`p` in the kernel of its star), and restores the constrained Delaunay property by flips
-    /// from its star and link; returns whether it moved.
+    /// Moves vertex `v` to `p` if each of its real triangles stays strictly counter-clockwise
+    /// there (`p` in the kernel of its star; beside the vertex at infinity, the caller keeps the
+    /// boundary where it was, as a vertex moved along a hull segment does), and restores the
+    /// constrained Delaunay property by flips from its star and link; returns whether it moved.
     pub fn move_vertex(&mut self, v: VertexId, p: Point) -> bool {
         let mesh = self.inserter.mesh();
         let mut edges = Vec::new();
         for e in mesh.star(v) {
             let (a, b) = (mesh.dest(e), mesh.apex(e));
-            if a == GHOST || b == GHOST || P::orient2d(p, mesh.point(a), mesh.point(b)) <= 0.0 {
+            if a == GHOST || b == GHOST {
+                continue;
+            }
+            if P::orient2d(p, mesh.point(a), mesh.point(b)) <= 0.0 {
                 return false;
             }
             edges.push((v, a));

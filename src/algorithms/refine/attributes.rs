@@ -40,6 +40,18 @@ impl<'a> Attributes<'a> {
         }
     }
 
+    /// Sets the attributes of vertex `w` to those at parameter `t` from `u` to `v`.
+    pub(super) fn set_on_segment(&mut self, w: VertexId, u: VertexId, v: VertexId, t: f64) {
+        let k = self.count;
+        for i in 0..k {
+            let (at_u, at_v) = (
+                self.values[u.index() * k + i],
+                self.values[v.index() * k + i],
+            );
+            self.values[w.index() * k + i] = at_u + t * (at_v - at_u);
+        }
+    }
+
     /// Sets the attributes of vertex `w` to those at affine frame coordinates `(xi, eta)` in
     /// triangle `(a, b, c)` (`w` may be a corner: a vertex moved within its star).
     pub(super) fn set_in_triangle(

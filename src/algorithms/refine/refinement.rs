@@ -17,6 +17,7 @@ use super::split_point::AngleBound;
 use super::walk::{walk, Walk};
 
 mod improvement; // `Refinement::improve`: smoothing and decimation of the finished mesh
+mod sliding; // `Refinement::try_sliding`: a vertex on a segment moved along it
 use super::{inside, Quality, VertexKind};
 use crate::algorithms::constrain::Constrainer;
 use crate::algorithms::delaunay::Location;

@@ -42,8 +42,8 @@ const ROUNDS: usize = 5;
 /// on another grid) the same vertices are moved and deleted, unless an angle falls within that
 /// band. A gain, not a margin, for moves: repeated smoothing converges, with ever smaller gains
 /// that would all fall within a margin's band.
-const MARGIN: f64 = 1e-6;
-const GAIN: f64 = 1e-3;
+pub(super) const MARGIN: f64 = 1e-6;
+pub(super) const GAIN: f64 = 1e-3;
 
 /// The compass search of [`Refinement::best_place`]: its directions, its last step (as a
 /// fraction of the shortest link edge), and its most evaluations per vertex.
@@ -77,6 +77,9 @@ impl<P: Predicates> Refinement<'_, '_, P> {
             let mut moved = 0;
             for &w in &free {
                 moved += usize::from(self.try_smoothing(w, floor, &mut link));
+            }
+            for &w in &on_segments {
+                moved += usize::from(self.try_sliding(w, floor, &mut link));
             }
             let before = free.len() + on_segments.len();
             free.retain(|&w| !self.try_deleting(w, floor));
@@ -291,7 +294,7 @@ impl<P: Predicates> Refinement<'_, '_, P> {
 }
 
 /// The sine squared of the smallest angle of the triangles `(p, a, b)` over the link `link`.
-fn star_min_sin2(p: Point, link: &[(Point, Point, bool)]) -> f64 {
+pub(super) fn star_min_sin2(p: Point, link: &[(Point, Point, bool)]) -> f64 {
     link.iter()
         .map(|&(a, b, _)| min_angle_sin2([p, a, b]))
         .fold(f64::INFINITY, f64::min)
