@@ -42,6 +42,41 @@ impl Domain {
         }
     }
 
+    /// Gives the triangles of regions that no output tells apart (the same attributes and the
+    /// same maximum area) one tag, the smallest of theirs: with `r`, every input triangle is a
+    /// region of its own, and refinement's operations that need one tag around a vertex
+    /// (deleting it, moving it) would stop at every input triangle's edge. Nothing the caller
+    /// receives changes (a triangle's outputs are those of its tag).
+    pub fn merge_equal_regions(&self, mesh: &mut Mesh) {
+        let k = self.attribute_count;
+        let tag_count = self.max_area.len();
+        if !mesh.tracks_tags() || tag_count <= FIRST_REGION as usize + 1 {
+            return;
+        }
+        let mut first: std::collections::HashMap<(Vec<u64>, u64), u32> =
+            std::collections::HashMap::new();
+        let mut class: Vec<u32> = (0..tag_count as u32).collect();
+        for tag in INSIDE..tag_count as u32 {
+            let t = tag as usize;
+            let Some(attributes) = self.attributes.get(t * k..(t + 1) * k) else {
+                continue;
+            };
+            let area = self.max_area[t];
+            let area = if area > 0.0 { area.to_bits() } else { 0 };
+            let key = (attributes.iter().map(|a| a.to_bits()).collect(), area);
+            class[t] = *first.entry(key).or_insert(tag);
+        }
+        let mut tags = mesh.take_tags();
+        for tag in tags.iter_mut() {
+            if *tag != OUTSIDE {
+                if let Some(&c) = class.get(*tag as usize) {
+                    *tag = c;
+                }
+            }
+        }
+        mesh.set_tags(tags);
+    }
+
     /// The domain of a reconstructed mesh (`r`): input triangle `i` is tagged
     /// `FIRST_REGION + i`, with its attributes and maximum area; ghosts are outside.
     pub fn per_triangle(

@@ -60,6 +60,7 @@ pub fn refine<P: Predicates>(
     });
     let kinds = vec![VertexKind::Input; mesh.points().len()];
     cdt.snap_vertices_onto_segments(floor2);
+    domain.merge_equal_regions(cdt.mesh_mut());
     let settings = Settings {
         domain,
         quality,

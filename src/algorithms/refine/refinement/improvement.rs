@@ -11,7 +11,7 @@
 //!   Ollivier-Gooch 1997): a free vertex goes to the centroid of its link, or halfway there,
 //!   then a direct search maximizes its star's smallest angle; the move is made if it raises
 //!   that angle, leaves every triangle of the star counter-clockwise, encroaches no subsegment
-//!   of its link and keeps the area bounds; Lawson
+//!   of its link (lens, or circle with `D`) and keeps the area bounds; Lawson
 //!   flips restore the constrained Delaunay property (a flip never lowers the smaller of the
 //!   two triangles' smallest angles, so the bound holds past the star too);
 //! - *decimation*: a free vertex is deleted ([`crate::mesh::Mesh::delete_vertex`]) if the
@@ -30,11 +30,13 @@ use super::Refinement;
 use crate::algorithms::delaunay::Location;
 use crate::algorithms::refine::{inside, VertexKind};
 use crate::geometry::{frame_coordinates, min_angle_sin2, Point, Predicates};
-use crate::mesh::{TriangleId, VertexId};
+use crate::mesh::{TriangleId, VertexId, GHOST};
 
 /// Rounds of smoothing and decimation. Measured on Triangle's example files with Laplacian
 /// smoothing alone: 2 rounds give 0.966× Triangle's triangles on geometric mean, 5 give 0.964×
-/// (no smoothing: 0.971×); with the search, 0.953×.
+/// (no smoothing: 0.971×); with the search, 0.953×. Each round still helps on large meshes
+/// (`greenland.ele` with `rq34`: 142 800 triangles after 1 round, 136 100 after 5, 134 300 after
+/// 8), at a cost of about half the refinement's time per round there.
 const ROUNDS: usize = 5;
 
 /// A deletion must keep the smallest angle's sine squared this fraction above the bound, and a
@@ -58,7 +60,23 @@ const COMPASS: [[f64; 2]; 8] = [
     [FRAC_1_SQRT_2, -FRAC_1_SQRT_2],
 ];
 const SEARCH_RESOLUTION: f64 = 1.0 / 1024.0;
-const SEARCH_EVALUATIONS: usize = 256;
+/// The most evaluations of the search per vertex and round: many on meshes of up to
+/// [`THOROUGH_UP_TO`] free vertices (measured on Triangle's example files: 256 give 121 of 128
+/// smallest angles at least Triangle's, 32 give 117), few beyond, where each round would
+/// otherwise cost twice the refinement (Triangle's `greenland.ele` with `rq34`, 41 000 free
+/// vertices: 32 evaluations, 0.3 s a round).
+const THOROUGH_SEARCH: usize = 256;
+const QUICK_SEARCH: usize = 32;
+const THOROUGH_UP_TO: usize = 1 << 14;
+
+/// The steps of a round of [`Refinement::improve`], in order.
+#[derive(Clone, Copy)]
+enum Step {
+    Smooth,
+    Slide,
+    Delete,
+    Unsplit,
+}
 
 impl<P: Predicates> Refinement<'_, '_, P> {
     /// Smooths and decimates the finished mesh (see the module documentation).
@@ -72,20 +90,54 @@ impl<P: Predicates> Refinement<'_, '_, P> {
             .map(VertexId::new)
             .filter(|v| matches!(self.kinds[v.index()], VertexKind::OnSegment { .. }))
             .collect();
+        let search = if free.len() <= THOROUGH_UP_TO {
+            THOROUGH_SEARCH
+        } else {
+            QUICK_SEARCH
+        };
         let mut link = Vec::new();
-        for _ in 0..ROUNDS {
-            let mut moved = 0;
-            for &w in &free {
-                moved += usize::from(self.try_smoothing(w, floor, &mut link));
+        // Per vertex, the last round in which it or a neighbour changed: after the first round,
+        // only those of the round before or this one are tried again.
+        let mut touched = vec![0u32; self.kinds.len()];
+        let mut around = Vec::new();
+        for round in 1..=ROUNDS as u32 {
+            let mut changed = 0;
+            for kind in [Step::Smooth, Step::Slide, Step::Delete, Step::Unsplit] {
+                let list = match kind {
+                    Step::Smooth | Step::Delete => &mut free,
+                    Step::Slide | Step::Unsplit => &mut on_segments,
+                };
+                let mut candidates = std::mem::take(list);
+                candidates.retain(|&w| {
+                    if round > 1 && touched[w.index()] + 1 < round {
+                        return true;
+                    }
+                    around.clear();
+                    around.extend(self.mesh().star(w).map(|e| self.mesh().dest(e)));
+                    let done = match kind {
+                        Step::Smooth => self.try_smoothing(w, floor, &mut link, search),
+                        Step::Slide => self.try_sliding(w, floor, &mut link),
+                        Step::Delete => self.try_deleting(w, floor),
+                        Step::Unsplit => self.try_unsplitting(w, floor),
+                    };
+                    if done {
+                        changed += 1;
+                        touched[w.index()] = round;
+                        for &v in &around {
+                            if v != GHOST {
+                                touched[v.index()] = round;
+                            }
+                        }
+                    }
+                    // Deleted vertices leave the list; moved ones stay.
+                    !(done && matches!(kind, Step::Delete | Step::Unsplit))
+                });
+                match kind {
+                    Step::Smooth | Step::Delete => free = candidates,
+                    Step::Slide | Step::Unsplit => on_segments = candidates,
+                }
             }
-            for &w in &on_segments {
-                moved += usize::from(self.try_sliding(w, floor, &mut link));
-            }
-            let before = free.len() + on_segments.len();
-            free.retain(|&w| !self.try_deleting(w, floor));
-            on_segments.retain(|&w| !self.try_unsplitting(w, floor));
-            let after = free.len() + on_segments.len();
-            if (moved == 0 && after == before) || self.polling.cancelled() {
+            if changed == 0 || self.polling.cancelled() {
                 break;
             }
         }
@@ -102,6 +154,7 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         w: VertexId,
         floor: f64,
         link: &mut Vec<(Point, Point, bool)>,
+        search: usize,
     ) -> bool {
         if self.polling.poll(self.work, || 0) || !self.mesh().is_deletable(w) {
             return false;
@@ -117,7 +170,7 @@ impl<P: Predicates> Refinement<'_, '_, P> {
             return false;
         };
         let old = star_min_sin2(pw, link);
-        let (p, new) = self.best_place(pw, old, t, link);
+        let (p, new) = self.best_place(pw, old, t, link, search);
         if new > old * (1.0 + GAIN) && new >= floor * (1.0 + MARGIN) {
             self.move_free_vertex(w, p);
             return true;
@@ -126,7 +179,7 @@ impl<P: Predicates> Refinement<'_, '_, P> {
     }
 
     /// Where a free vertex at `pw` (its star's smallest angle's sine squared `old`, in triangle
-    /// `t`'s region, with link `link`) has a larger smallest angle, and that angle's sine
+    /// `t`'s region, with link `link`; at most `search` evaluations) has a larger smallest angle, and that angle's sine
     /// squared: the centroid of the link (Laplacian smoothing) or halfway there, then a compass
     /// search (steps in eight directions from a quarter of the shortest link edge down to
     /// [`SEARCH_RESOLUTION`] of it, halved when no step helps: Kolda, Lewis and Torczon,
@@ -139,6 +192,7 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         old: f64,
         t: TriangleId,
         link: &[(Point, Point, bool)],
+        search: usize,
     ) -> (Point, f64) {
         let value = |p: Point| {
             if p != pw && self.may_move_to(p, t, link) {
@@ -166,7 +220,7 @@ impl<P: Predicates> Refinement<'_, '_, P> {
             .fold(f64::INFINITY, f64::min);
         let (mut step, last) = (0.25 * shortest, SEARCH_RESOLUTION * shortest);
         let mut evaluations = 0;
-        while step >= last && evaluations < SEARCH_EVALUATIONS {
+        while step >= last && evaluations < search {
             let mut moved = false;
             for [dx, dy] in COMPASS {
                 let p = self.placed([best[0] + step * dx, best[1] + step * dy]);
@@ -184,13 +238,12 @@ impl<P: Predicates> Refinement<'_, '_, P> {
     }
 
     /// Whether free vertex of triangle `t`'s region, with link `link`, may be moved to `p`: its
-    /// triangles stay counter-clockwise, no subsegment of the link is encroached, the area bounds
-    /// hold.
+    /// triangles stay counter-clockwise, no subsegment of the link is encroached (by the test
+    /// refinement uses: diametral lenses, or circles with `D`), the area bounds hold.
     fn may_move_to(&self, p: Point, t: TriangleId, link: &[(Point, Point, bool)]) -> bool {
         link.iter().all(|&(a, b, segment)| {
             P::orient2d(p, a, b) > 0.0
-                && !(segment
-                    && (a[0] - p[0]) * (b[0] - p[0]) + (a[1] - p[1]) * (b[1] - p[1]) <= 0.0)
+                && !(segment && self.encroachment.encroaches(a, b, p))
                 && !self.too_big(t, [p, a, b])
         })
     }
