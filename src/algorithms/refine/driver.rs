@@ -344,7 +344,10 @@ impl<P: Predicates> Driver<'_, '_, P> {
         // Not under `S` (which counts insertions), nor with the user's test (which would be
         // asked about every triangle tried: slow where it is a script's callback, and it may
         // answer by a state of its own, as Triangle's callers' tests may).
-        if self.quality.max_steiner.is_some() || self.quality.user_test.is_some() {
+        if self.quality.max_steiner.is_some()
+            || self.quality.user_test.is_some()
+            || !self.refinement.worth_improving()
+        {
             return Outcome::Finished;
         }
         let triangles = self.inside_triangle_count();
