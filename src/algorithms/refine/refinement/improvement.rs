@@ -17,12 +17,17 @@
 //! - *decimation*: a free vertex is deleted ([`crate::mesh::Mesh::delete_vertex`]) if the
 //!   triangles that fill its star have their smallest angle at least the smallest angle of the
 //!   mesh's triangles that meet θ (the mesh's smallest angle does not go down) and meet the area
-//!   bounds and the user's test; else it goes back in at its point. A deletion encroaches no
-//!   subsegment (the vertex set only shrinks) and keeps the triangulation constrained Delaunay.
+//!   bounds; else it goes back in at its point. A deletion encroaches no subsegment (the vertex
+//!   set only shrinks) and keeps the triangulation constrained Delaunay.
 //!
-//! Free vertices are the split points of bad triangles and the lattice seeds: input vertices and
-//! vertices on segments stay where they are. A moved vertex's attributes are interpolated again
-//! at its new place. Whatever a reinsertion or a flip leaves bad is the driver's to refine again.
+//! Free vertices are the split points of bad triangles and the lattice seeds. Vertices that
+//! refinement put on segments are slid along them ([`super::sliding`]) and deleted the same way
+//! when the subsegment their two subsegments become is not encroached
+//! ([`crate::mesh::Mesh::delete_segment_vertex`]; not with `Y`/`YY`). Input vertices stay. A
+//! moved vertex's attributes are interpolated again at its new place. Later rounds try only the
+//! vertices near a change of the round before. Whatever a reinsertion or a flip leaves bad is
+//! the driver's to refine again (the driver: not with `S` or the user's test, and only up to
+//! [`IMPROVE_UP_TO`] Steiner vertices).
 
 use std::f64::consts::FRAC_1_SQRT_2;
 
