@@ -99,8 +99,8 @@ pub fn refine<P: Predicates>(
             driver.run_within(None)
         }
     };
-    // The finished mesh is smoothed and decimated (not under `S`, which counts insertions),
-    // in the frame it was refined in.
+    // The finished mesh is improved (smoothed and decimated: see `Driver::improve` for when
+    // not), in the frame it was refined in.
     if outcome == Outcome::Finished && !driver.improved {
         outcome = driver.improve();
     }
@@ -115,8 +115,8 @@ pub fn refine<P: Predicates>(
             off_grid = true;
         }
     }
-    // Vertices deleted by Chew's rule and by decimation leave the numbering: Steiner points stay in order after
-    // the input's.
+    // Vertices deleted by Chew's rule and by decimation leave the numbering: Steiner points
+    // stay in order after the input's.
     driver.refinement.drop_deleted_vertices();
     let tally = driver.refinement.tally();
     let mut warnings = driver.warnings;
