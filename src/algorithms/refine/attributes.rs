@@ -16,28 +16,29 @@ impl<'a> Attributes<'a> {
 
     /// Appends the attributes of a vertex at parameter `t` from `u` to `v`.
     pub(super) fn push_on_segment(&mut self, u: VertexId, v: VertexId, t: f64) {
-        let k = self.count;
-        for i in 0..k {
-            let (at_u, at_v) = (
-                self.values[u.index() * k + i],
-                self.values[v.index() * k + i],
-            );
-            self.values.push(at_u + t * (at_v - at_u));
+        if let Some(w) = self.push_row() {
+            self.set_on_segment(w, u, v, t);
         }
     }
 
     /// Appends the attributes of a vertex at affine frame coordinates `(xi, eta)` in triangle
     /// `(a, b, c)`: `a + xi·(b − a) + eta·(c − a)`.
-    pub(super) fn push_in_triangle(&mut self, [a, b, c]: [VertexId; 3], xi: f64, eta: f64) {
-        let k = self.count;
-        for i in 0..k {
-            let (va, vb, vc) = (
-                self.values[a.index() * k + i],
-                self.values[b.index() * k + i],
-                self.values[c.index() * k + i],
-            );
-            self.values.push(va + xi * (vb - va) + eta * (vc - va));
+    pub(super) fn push_in_triangle(&mut self, corners: [VertexId; 3], xi: f64, eta: f64) {
+        if let Some(w) = self.push_row() {
+            self.set_in_triangle(w, corners, xi, eta);
         }
+    }
+
+    /// Appends a row for a new vertex (to be set), and returns the vertex; none without
+    /// attributes.
+    fn push_row(&mut self) -> Option<VertexId> {
+        let k = self.count;
+        if k == 0 {
+            return None;
+        }
+        let w = VertexId::new((self.values.len() / k) as u32);
+        self.values.resize(self.values.len() + k, 0.0);
+        Some(w)
     }
 
     /// Sets the attributes of vertex `w` to those at parameter `t` from `u` to `v`.
