@@ -94,10 +94,28 @@ impl Mesh {
             .find_edge(a, b)
             .expect("the merged triangle")
             .triangle();
-        let hole = self.hole(start, &link);
-        debug_assert_eq!(hole.len(), link.len() - 2);
+        let made = self.restore_hole::<P>(start, &link, stack);
+        debug_assert!(made.len() >= link.len() - 2);
+        Some(made)
+    }
+
+    /// After a vertex is taken out: Lawson flips, segments fixed, from `stack` and from the
+    /// edges of the triangles inside its old link `link` (found from triangle `start`, see
+    /// [`Self::hole`]). Returns those triangles and the ones flips made, without repeats.
+    pub(super) fn restore_hole<P: Predicates>(
+        &mut self,
+        start: TriangleId,
+        link: &[VertexId],
+        mut stack: Vec<(VertexId, VertexId)>,
+    ) -> Vec<TriangleId> {
+        let hole = self.hole(start, link);
         for &t in &hole {
-            stack.extend(t.edges().map(|e| (self.origin(e), self.dest(e))));
+            stack.extend(
+                t.edges()
+                    .into_iter()
+                    .map(|e| (self.origin(e), self.dest(e)))
+                    .filter(|&(x, y)| x != GHOST && y != GHOST),
+            );
         }
         let mut lawson = BetweenSegments {
             record: true,
@@ -110,7 +128,7 @@ impl Mesh {
         made.extend(lawson.flipped);
         made.sort_unstable();
         made.dedup();
-        Some(made)
+        made
     }
 
     /// The triangles inside the polygon `link` (a vertex's old star, counter-clockwise) from

@@ -10,10 +10,20 @@
 //! `(v, r, a)` become `(a, l, b)` and `(b, r, a)`, edge `a`–`b` the segment, and Lawson flips,
 //! segments fixed, restore the constrained Delaunay property inside the old star.
 
-use super::{BetweenSegments, EdgeId, Mesh, TriangleId, VertexId, GHOST};
+use super::{EdgeId, Mesh, TriangleId, VertexId, GHOST};
 use crate::geometry::Predicates;
 
 impl Mesh {
+    /// The two vertices joined to `v` by subsegments of one segment, if `v` lies between
+    /// exactly two such (a vertex refinement put on a segment, where it stays one segment).
+    pub fn segment_neighbours(&self, v: VertexId) -> Option<[VertexId; 2]> {
+        let mut on_segment = self.star(v).filter(|&e| self.is_segment(e));
+        let (first, second) = (on_segment.next()?, on_segment.next()?);
+        let one_segment =
+            on_segment.next().is_none() && self.segment_of(first) == self.segment_of(second);
+        one_segment.then(|| [self.dest(first), self.dest(second)])
+    }
+
     /// Deletes vertex `v`, which lies between exactly two subsegments of one segment, from a
     /// constrained Delaunay mesh (exact predicates `P`; see the module documentation): the
     /// subsegments become one, from `a` to `b`, and the mesh stays constrained Delaunay.
@@ -126,24 +136,6 @@ impl Mesh {
             .find_edge(a, b)
             .expect("the merged subsegment")
             .triangle();
-        let hole = self.hole(start, &link);
-        for &t in &hole {
-            stack.extend(
-                t.edges()
-                    .into_iter()
-                    .map(|e| (self.origin(e), self.dest(e)))
-                    .filter(|&(x, y)| x != GHOST && y != GHOST),
-            );
-        }
-        let mut lawson = BetweenSegments {
-            record: true,
-            flipped: Vec::new(),
-        };
-        self.legalize::<P, _>(&mut stack, &mut lawson);
-        let mut made = hole;
-        made.extend(lawson.flipped);
-        made.sort_unstable();
-        made.dedup();
-        Some(made)
+        Some(self.restore_hole::<P>(start, &link, stack))
     }
 }

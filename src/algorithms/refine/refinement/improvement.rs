@@ -327,13 +327,7 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         if self.polling.poll(self.work, || 0) || self.settings.quality.no_steiner_on_segments > 0 {
             return false;
         }
-        let mesh = self.mesh();
-        let ends: Vec<VertexId> = mesh
-            .star(w)
-            .filter(|&e| mesh.is_segment(e))
-            .map(|e| mesh.dest(e))
-            .collect();
-        let &[a, b] = ends.as_slice() else {
+        let Some([a, b]) = self.mesh().segment_neighbours(w) else {
             return false;
         };
         let Some(made) = self.cdt.delete_segment_vertex(w) else {

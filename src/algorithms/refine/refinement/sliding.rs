@@ -35,19 +35,9 @@ impl<P: Predicates> Refinement<'_, '_, P> {
             return false;
         }
         let mesh = self.mesh();
-        let ends: Vec<VertexId> = mesh
-            .star(w)
-            .filter(|&e| mesh.is_segment(e))
-            .map(|e| mesh.dest(e))
-            .collect();
-        let &[a, b] = ends.as_slice() else {
+        let Some([a, b]) = mesh.segment_neighbours(w) else {
             return false;
         };
-        if mesh.find_edge(w, a).map(|e| mesh.segment_of(e))
-            != mesh.find_edge(w, b).map(|e| mesh.segment_of(e))
-        {
-            return false;
-        }
         let Some(t) = mesh
             .star(w)
             .map(|e| e.triangle())
