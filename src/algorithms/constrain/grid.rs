@@ -73,4 +73,26 @@ impl<P: Predicates> Constrainer<P> {
         self.restore_delaunay(edges);
         true
     }
+
+    /// Moves vertex `v`, inside the domain on no segment, to `p` (a point of its region): as
+    /// [`Self::move_vertex`] where `p` is in its star's kernel, else by deleting it and
+    /// inserting it again at `p`. Returns whether it is at `p` (it stays where it was when it
+    /// cannot be deleted, or `p` is another vertex's point).
+    pub fn place_vertex(&mut self, v: VertexId, p: Point) -> bool {
+        if self.move_vertex(v, p) {
+            return true;
+        }
+        let from = self.inserter.mesh().point(v);
+        let Some(made) = self.delete_vertex(v) else {
+            return false;
+        };
+        for q in [p, from] {
+            self.inserter.mesh_mut().move_point(v, q);
+            let location = self.inserter.locate(q, made[0]);
+            if self.inserter.insert_at(v, location).is_ok() {
+                return q == p;
+            }
+        }
+        false
+    }
 }

@@ -73,6 +73,18 @@ impl<'a> Attributes<'a> {
         }
     }
 
+    /// The attributes of vertex `w` (empty without attributes).
+    pub(super) fn row(&self, w: VertexId) -> Vec<f64> {
+        let k = self.count;
+        self.values[w.index() * k..(w.index() + 1) * k].to_vec()
+    }
+
+    /// Sets the attributes of vertex `w` to `row` (as [`Self::row`] gave them).
+    pub(super) fn set_row(&mut self, w: VertexId, row: &[f64]) {
+        let k = self.count;
+        self.values[w.index() * k..(w.index() + 1) * k].copy_from_slice(row);
+    }
+
     /// Keeps the rows of the vertices `v` for which `keep(v)` holds, in order.
     pub(super) fn retain_rows(&mut self, keep: impl Fn(usize) -> bool) {
         let k = self.count;

@@ -144,7 +144,7 @@ impl<P: Predicates> Refinement<'_, '_, P> {
                     let done = match kind {
                         Step::Smooth => self.try_smoothing(w, floor, &mut link, search),
                         Step::Slide => self.try_sliding(w, floor, &mut link),
-                        Step::Delete => self.try_deleting(w, floor),
+                        Step::Delete => self.try_deleting(w, floor, &mut link, search),
                         Step::Unsplit => self.try_unsplitting(w, floor),
                     };
                     if done {
@@ -296,23 +296,118 @@ impl<P: Predicates> Refinement<'_, '_, P> {
     /// Deletes free vertex `w` if the triangles that fill its star are good enough (smallest
     /// angle's sine squared at least `floor`, area bounds, user's test); else puts it back.
     /// Whether it stays deleted.
-    fn try_deleting(&mut self, w: VertexId, floor: f64) -> bool {
+    fn try_deleting(
+        &mut self,
+        w: VertexId,
+        floor: f64,
+        link: &mut Vec<(Point, Point, bool)>,
+        search: usize,
+    ) -> bool {
         if self.polling.poll(self.work, || 0) || !self.mesh().is_deletable(w) {
             return false;
         }
         let p = self.mesh().point(w);
+        let neighbours: Vec<VertexId> = self
+            .mesh()
+            .star(w)
+            .map(|e| self.mesh().dest(e))
+            .filter(|&v| v != GHOST)
+            .collect();
         let Some(made) = self.cdt.delete_vertex(w) else {
             return false;
         };
-        if made.iter().all(|&t| self.good_enough(t, floor)) {
+        if made.iter().all(|&t| self.good_enough(t, floor))
+            || self.smooth_after_deletion(&made, &neighbours, floor, link, search)
+        {
             self.kinds[w.index()] = VertexKind::Deleted;
             return true;
         }
-        let location = self.cdt.locate(p, made[0]);
+        let start = self
+            .mesh()
+            .vertex_edge(neighbours[0])
+            .map_or(made[0], |e| e.triangle());
+        let location = self.cdt.locate(p, start);
         if self.cdt.insert_at(w, location).is_err() {
             // On a vertex: cannot be (the point was a vertex's own); it stays out.
             self.kinds[w.index()] = VertexKind::Deleted;
             return true;
+        }
+        false
+    }
+
+    /// After a deletion whose triangles `made` are not all good enough: moves the free corners
+    /// of the bad ones where their stars are better (as [`Self::try_smoothing`] would, without
+    /// the floor), and whether every triangle around `neighbours` (the deleted vertex's link)
+    /// and the moved vertices is good enough then. If not, the moved vertices go back.
+    fn smooth_after_deletion(
+        &mut self,
+        made: &[TriangleId],
+        neighbours: &[VertexId],
+        floor: f64,
+        link: &mut Vec<(Point, Point, bool)>,
+        search: usize,
+    ) -> bool {
+        let mut candidates: Vec<VertexId> = Vec::new();
+        for &t in made {
+            if self.good_enough(t, floor) {
+                continue;
+            }
+            for v in self.mesh().triangle(t) {
+                if matches!(self.kinds[v.index()], VertexKind::Free | VertexKind::Seed)
+                    && !candidates.contains(&v)
+                {
+                    candidates.push(v);
+                }
+            }
+        }
+        if candidates.is_empty() {
+            return false;
+        }
+        let mut moved: Vec<(VertexId, Point, Vec<f64>)> = Vec::new();
+        for _ in 0..2 {
+            for &x in &candidates {
+                if !self.mesh().is_deletable(x) {
+                    continue;
+                }
+                let mesh = self.mesh();
+                let px = mesh.point(x);
+                link.clear();
+                link.extend(mesh.star(x).map(|e| {
+                    let (a, b) = (mesh.dest(e), mesh.apex(e));
+                    (mesh.point(a), mesh.point(b), mesh.is_segment(e.next()))
+                }));
+                let Some(t) = mesh.vertex_edge(x).map(|e| e.triangle()) else {
+                    continue;
+                };
+                let old = star_min_sin2(px, link);
+                if old >= floor * (1.0 + MARGIN) {
+                    continue;
+                }
+                let (q, new) = self.best_place(px, old, t, link, search);
+                if new > old * (1.0 + GAIN) {
+                    if !moved.iter().any(|m| m.0 == x) {
+                        moved.push((x, px, self.attributes.row(x)));
+                    }
+                    self.move_free_vertex(x, q);
+                }
+            }
+        }
+        if moved.is_empty() {
+            return false;
+        }
+        let mesh = self.mesh();
+        let good = neighbours
+            .iter()
+            .copied()
+            .chain(moved.iter().map(|m| m.0))
+            .all(|v| mesh.star(v).all(|e| self.good_enough(e.triangle(), floor)));
+        if good {
+            return true;
+        }
+        for (x, px, row) in moved.into_iter().rev() {
+            if self.cdt.place_vertex(x, px) {
+                self.attributes.set_row(x, &row);
+            }
         }
         false
     }
