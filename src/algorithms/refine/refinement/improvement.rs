@@ -43,6 +43,7 @@ use crate::mesh::{TriangleId, VertexId, GHOST};
 /// (`greenland.ele` with `rq34`: 142 800 triangles after 1 round, 136 100 after 5, 134 300 after
 /// 8), at a cost of about half the refinement's time per round there.
 const ROUNDS: usize = 5;
+const POLISHING_ROUNDS: usize = 3;
 
 /// A deletion must keep the smallest angle's sine squared this fraction above the bound, and a
 /// move raise it by [`GAIN`]: so that where rounding differs (the same mesh in another frame,
@@ -108,7 +109,7 @@ impl<P: Predicates> Refinement<'_, '_, P> {
 
     /// Smooths and decimates the finished mesh (see the module documentation).
     pub(in crate::algorithms::refine) fn improve(&mut self) {
-        let floor = self.smallest_good_angle_sin2();
+        let mut floor = self.smallest_good_angle_sin2();
         let mut free: Vec<VertexId> = (0..self.kinds.len() as u32)
             .map(VertexId::new)
             .filter(|v| matches!(self.kinds[v.index()], VertexKind::Free | VertexKind::Seed))
@@ -127,9 +128,22 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         // only those of the round before or this one are tried again.
         let mut touched = vec![0u32; self.kinds.len()];
         let mut around = Vec::new();
-        for round in 1..=ROUNDS as u32 {
+        for round in 1..=(ROUNDS + POLISHING_ROUNDS) as u32 {
             let mut changed = 0;
-            for kind in [Step::Smooth, Step::Slide, Step::Delete, Step::Unsplit] {
+            let steps: &[Step] = if round as usize > ROUNDS {
+                &[Step::Smooth, Step::Slide]
+            } else {
+                &[Step::Smooth, Step::Slide, Step::Delete, Step::Unsplit]
+            };
+            for &kind in steps {
+                // The floor rises with the mesh's smallest angle (smoothing raises it; nothing
+                // lowers it below the floor): measured on Triangle's example files, a floor
+                // kept from the start gives 0.78× Triangle's triangles on geometric mean and a
+                // smallest angle at least Triangle's on 118 of 128 cases; raised before each
+                // round's deletions, 0.80× and 123.
+                if matches!(kind, Step::Delete) {
+                    floor = floor.max(self.smallest_good_angle_sin2());
+                }
                 let list = match kind {
                     Step::Smooth | Step::Delete => &mut free,
                     Step::Slide | Step::Unsplit => &mut on_segments,
@@ -164,7 +178,12 @@ impl<P: Predicates> Refinement<'_, '_, P> {
                     Step::Slide | Step::Unsplit => on_segments = candidates,
                 }
             }
-            if changed == 0 || self.polling.cancelled() {
+            if self.polling.cancelled() {
+                break;
+            }
+            // A round without a change leaves later decimation rounds nothing to retry (they
+            // cost nothing then): on to the polishing rounds.
+            if changed == 0 && round as usize >= ROUNDS {
                 break;
             }
         }
