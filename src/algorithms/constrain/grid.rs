@@ -88,7 +88,7 @@ impl<P: Predicates> Constrainer<P> {
         };
         for q in [p, from] {
             self.inserter.mesh_mut().move_point(v, q);
-            let location = self.inserter.locate(q, made[0]);
+            let location = self.inserter.locate_thoroughly(q, made[0]);
             if self.inserter.insert_at(v, location).is_ok() {
                 return q == p;
             }

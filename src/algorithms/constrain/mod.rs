@@ -142,6 +142,11 @@ impl<P: Predicates> Constrainer<P> {
         self.inserter.locate(p, start)
     }
 
+    /// Locates `p` in a mesh that need not be convex (see [`Inserter::locate_thoroughly`]).
+    pub fn locate_thoroughly(&mut self, p: Point, start: TriangleId) -> Location {
+        self.inserter.locate_thoroughly(p, start)
+    }
+
     /// Inserts vertex `v` at a known location with Lawson flips that keep segments (see
     /// [`Inserter::insert_at`]); `Err(u)` if it lies on vertex `u`.
     pub fn insert_at(&mut self, v: VertexId, location: Location) -> Result<(), VertexId> {

@@ -267,6 +267,17 @@ impl<P: Predicates> Inserter<P> {
         }
     }
 
+    /// As [`Self::locate`], for a mesh that need not be convex (holes or concavities carved
+    /// out): a walk can stop at the boundary before reaching `p` (it only knows that `p` is
+    /// beyond that boundary edge's line), so an `Outside` walk is followed by a scan of every
+    /// triangle. `Outside` only when `p` is in no triangle.
+    pub fn locate_thoroughly(&mut self, p: Point, start: TriangleId) -> Location {
+        match self.locate(p, start) {
+            Location::Outside(_) => self.locate_by_scan(p),
+            location => location,
+        }
+    }
+
     fn locate_by_scan(&self, p: Point) -> Location {
         for t in self.mesh.triangles() {
             if self.mesh.is_ghost(t) {

@@ -345,7 +345,8 @@ impl<P: Predicates> Refinement<'_, '_, P> {
             .mesh()
             .vertex_edge(neighbours[0])
             .map_or(made[0], |e| e.triangle());
-        let location = self.cdt.locate(p, start);
+        // The mesh is carved (holes, concavities): a plain walk can stop at its boundary.
+        let location = self.cdt.locate_thoroughly(p, start);
         if self.cdt.insert_at(w, location).is_err() {
             // On a vertex: cannot be (the point was a vertex's own); it stays out.
             self.kinds[w.index()] = VertexKind::Deleted;
