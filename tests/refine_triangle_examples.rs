@@ -18,7 +18,9 @@
 //!   half of θ and of Triangle's;
 //! - every triangle within its area bound (global `a<x>`, regional `a` by flooding from the
 //!   region points across non-segment edges, per triangle of the previous mesh with `rpqa`);
-//! - our triangles cover the same area as Triangle's, and number between 0.5× and 2× Triangle's.
+//! - our triangles cover the same area as Triangle's, and number at most 2× Triangle's (fewer is
+//!   no fault when every bound above holds: with the improvement of the finished mesh, `A.poly`
+//!   with `q33` has 134 triangles where Triangle's cascade at 33° makes 290).
 //!
 //! Orientation, validity and the Delaunay property are decided with exact predicates; angles are
 //! compared with θ in floating point within 10^-6°. Inputs Triangle does not finish (the
@@ -40,8 +42,9 @@ use common::quality::{angles, check_areas, engine, ANGLE_TOLERANCE};
 use common::reference::{Reference, REFERENCE_LIBRARY};
 use common::{ours, reference};
 
-/// Our triangle count must lie within these factors of Triangle's.
-const COUNT_RANGE: (f64, f64) = (0.5, 2.0);
+/// Our triangle count may be at most this factor of Triangle's. There is no lower bound: the
+/// angle and area bounds are checked on every triangle, and a smaller mesh meeting them is better.
+const MOST_COUNT_RATIO: f64 = 2.0;
 /// Two distances from a common vertex count as equal within this fraction (the test of the
 /// excused configuration; the engine's is tighter).
 const EQUAL_DISTANCE: f64 = 0.01;
@@ -429,8 +432,8 @@ fn compare(example: &Example, switches: &str, triangle: &Reference) -> String {
     } else {
         let ratio = o.triangles as f64 / t.triangles as f64;
         assert!(
-            (COUNT_RANGE.0..=COUNT_RANGE.1).contains(&ratio),
-            "{numbers}: {ratio:.3}× Triangle's triangles, outside {COUNT_RANGE:?}"
+            ratio <= MOST_COUNT_RATIO,
+            "{numbers}: {ratio:.3}× Triangle's triangles, more than {MOST_COUNT_RATIO}×"
         );
     }
     if switches.contains('Y') {
