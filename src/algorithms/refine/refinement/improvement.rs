@@ -240,9 +240,23 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         link: &[(Point, Point, bool)],
         search: usize,
     ) -> (Point, f64) {
-        let value = |p: Point| {
-            if p != pw && self.may_move_to(p, t, link) {
-                star_min_sin2(p, link)
+        // A place's value, computed only as far as it can beat `bar` (-1 where it cannot, or
+        // where the move is not allowed): the same comparisons as the full value's, for a
+        // fraction of its work, since most places tried are no better.
+        let value = |p: Point, bar: f64| {
+            if p == pw {
+                return -1.0;
+            }
+            let mut smallest = f64::INFINITY;
+            for &(a, b, _) in link {
+                let s = min_angle_sin2([p, a, b]);
+                if s <= bar || P::orient2d(p, a, b) <= 0.0 {
+                    return -1.0;
+                }
+                smallest = smallest.min(s);
+            }
+            if self.may_move_to(p, t, link) {
+                smallest
             } else {
                 -1.0
             }
@@ -254,7 +268,7 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         let (mut best, mut best_value) = (pw, old);
         for weight in [1.0, 0.5] {
             let p = self.placed([pw[0] + weight * centroid[0], pw[1] + weight * centroid[1]]);
-            let v = value(p);
+            let v = value(p, best_value);
             if v > best_value {
                 (best, best_value) = (p, v);
                 break;
@@ -270,7 +284,7 @@ impl<P: Predicates> Refinement<'_, '_, P> {
             let mut moved = false;
             for [dx, dy] in COMPASS {
                 let p = self.placed([best[0] + step * dx, best[1] + step * dy]);
-                let v = value(p);
+                let v = value(p, best_value);
                 evaluations += 1;
                 if v > best_value {
                     (best, best_value, moved) = (p, v, true);
