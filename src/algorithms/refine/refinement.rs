@@ -493,6 +493,9 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
     /// region's) or bad by the user's test.
     fn too_big(&self, t: TriangleId, [pa, pb, pc]: [Point; 3]) -> bool {
         let quality = self.settings.quality;
+        if quality.max_area.is_none() && !quality.variable_area && quality.user_test.is_none() {
+            return false;
+        }
         let area = 0.5 * P::orient2d(pa, pb, pc);
         let regional = if quality.variable_area {
             self.settings
