@@ -18,7 +18,10 @@
 //!   triangles that fill its star have their smallest angle at least the smallest angle of the
 //!   mesh's triangles that meet θ (the mesh's smallest angle does not go down) and meet the area
 //!   bounds; else it goes back in at its point. A deletion encroaches no subsegment (the vertex
-//!   set only shrinks) and keeps the triangulation constrained Delaunay.
+//!   set only shrinks) and keeps the triangulation constrained Delaunay. With `Y`/`YY`, where
+//!   refinement leaves the bad triangles that only a vertex on a segment could mend, a deletion
+//!   also stands if the triangles around the deleted vertex's link are no worse than before
+//!   (smallest angle, number below the floor).
 //!
 //! Free vertices are the split points of bad triangles and the lattice seeds. Vertices that
 //! refinement put on segments are slid along them ([`super::sliding`]) and deleted the same way
@@ -346,11 +349,27 @@ impl<P: Predicates> Refinement<'_, '_, P> {
             .map(|e| self.mesh().dest(e))
             .filter(|&v| v != GHOST)
             .collect();
+        // With `Y`/`YY`, bad triangles that only a vertex on a segment could mend stay: a
+        // deletion there need not make every triangle good, only leave the triangles around
+        // the deleted vertex's link no worse.
+        let before = (self.settings.quality.no_steiner_on_segments > 0)
+            .then(|| self.quality_around(&neighbours, floor));
         let Some(made) = self.cdt.delete_vertex(w) else {
             return false;
         };
+        let no_worse = |this: &Self| {
+            before.is_some_and(|b| {
+                made.iter().all(|&t| {
+                    let mesh = this.mesh();
+                    mesh.is_ghost(t)
+                        || !inside(mesh, t)
+                        || !this.too_big(t, mesh.triangle(t).map(|v| mesh.point(v)))
+                }) && this.quality_around(&neighbours, floor).no_worse_than(b)
+            })
+        };
         if made.iter().all(|&t| self.good_enough(t, floor))
-            || self.smooth_after_deletion(&made, &neighbours, floor, link, search)
+            || no_worse(self)
+            || self.smooth_after_deletion(&made, &neighbours, floor, link, search, before)
         {
             self.kinds[w.index()] = VertexKind::Deleted;
             return true;
@@ -380,6 +399,7 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         floor: f64,
         link: &mut Vec<(Point, Point, bool)>,
         search: usize,
+        before: Option<Around>,
     ) -> bool {
         let mut candidates: Vec<VertexId> = Vec::new();
         for &t in made {
@@ -434,7 +454,8 @@ impl<P: Predicates> Refinement<'_, '_, P> {
             .iter()
             .copied()
             .chain(moved.iter().map(|m| m.0))
-            .all(|v| mesh.star(v).all(|e| self.good_enough(e.triangle(), floor)));
+            .all(|v| mesh.star(v).all(|e| self.good_enough(e.triangle(), floor)))
+            || before.is_some_and(|b| self.quality_around(neighbours, floor).no_worse_than(b));
         if good {
             return true;
         }
@@ -484,6 +505,29 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         min_angle_sin2(points) >= floor * (1.0 + MARGIN) && !self.too_big(t, points)
     }
 
+    /// The quality of the domain's triangles around `vertices` (each once): the smallest
+    /// angle's sine squared, and how many are below `floor`.
+    fn quality_around(&self, vertices: &[VertexId], floor: f64) -> Around {
+        let mesh = self.mesh();
+        let mut triangles: Vec<TriangleId> = vertices
+            .iter()
+            .flat_map(|&v| mesh.star(v).map(|e| e.triangle()))
+            .filter(|&t| !mesh.is_ghost(t) && inside(mesh, t))
+            .collect();
+        triangles.sort_unstable();
+        triangles.dedup();
+        let mut around = Around {
+            worst: f64::INFINITY,
+            below_floor: 0,
+        };
+        for t in triangles {
+            let s = min_angle_sin2(mesh.triangle(t).map(|v| mesh.point(v)));
+            around.worst = around.worst.min(s);
+            around.below_floor += usize::from(s < floor * (1.0 + MARGIN));
+        }
+        around
+    }
+
     /// The sine squared of the smallest angle among the domain's triangles whose smallest angle
     /// is at least θ (θ's when there are none).
     fn smallest_good_angle_sin2(&self) -> f64 {
@@ -504,4 +548,19 @@ pub(super) fn star_min_sin2(p: Point, link: &[(Point, Point, bool)]) -> f64 {
     link.iter()
         .map(|&(a, b, _)| min_angle_sin2([p, a, b]))
         .fold(f64::INFINITY, f64::min)
+}
+
+/// The quality of the triangles around some vertices ([`Refinement::quality_around`]).
+#[derive(Clone, Copy)]
+struct Around {
+    worst: f64,
+    below_floor: usize,
+}
+
+impl Around {
+    /// Whether these triangles are no worse than `before`'s: their smallest angle no smaller,
+    /// no more of them below the floor.
+    fn no_worse_than(self, before: Around) -> bool {
+        self.worst >= before.worst && self.below_floor <= before.below_floor
+    }
 }
