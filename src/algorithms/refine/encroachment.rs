@@ -5,7 +5,7 @@
 
 use super::{inside, VertexKind};
 use crate::algorithms::delaunay::Location;
-use crate::geometry::{min_angle_sin2, Point, Predicates};
+use crate::geometry::{Point, Predicates};
 use crate::mesh::{EdgeId, Mesh, TriangleId, VertexId, GHOST};
 
 /// The encroachment test for an angle bound θ.
@@ -127,28 +127,6 @@ impl Cavity {
             }
         }
         found
-    }
-
-    /// The quality ([`min_angle_sin2`]) of the worst triangle that inserting `x` makes: `x`
-    /// joined to the edges around the cavity that [`Self::encroached_by`] last found for it (in
-    /// the same mesh).
-    pub(super) fn worst_triangle_made(&self, mesh: &Mesh, x: Point) -> f64 {
-        let mut worst = f64::INFINITY;
-        for &t in &self.triangles {
-            for e in t.edges() {
-                if !mesh.is_segment(e)
-                    && self.stamp[mesh.twin(e).triangle().index()] == self.generation
-                {
-                    continue;
-                }
-                worst = worst.min(min_angle_sin2([
-                    mesh.point(mesh.origin(e)),
-                    mesh.point(mesh.dest(e)),
-                    x,
-                ]));
-            }
-        }
-        worst
     }
 }
 
