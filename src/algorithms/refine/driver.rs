@@ -12,6 +12,11 @@ use crate::algorithms::domain::Domain;
 use crate::geometry::{min_angle_sin2, Predicates};
 use crate::mesh::Mesh;
 
+/// [`Driver::raise_smallest_angle`]: its most tries, and the largest mesh it works on (each try
+/// copies the mesh and scans it).
+const RAISES: usize = 6;
+const RAISE_UP_TO: u64 = 1 << 16;
+
 /// Above that angle, refinement first runs straight toward it with a budget of this many new
 /// vertices per triangle of the unrefined mesh (plus what the area bound asks for); a run that
 /// finishes within it is compared with the other queue order only.
@@ -332,7 +337,7 @@ impl<P: Predicates> Driver<'_, '_, P> {
     /// put back, an area bound after flips, a subsegment that a moved vertex encroaches). Up to
     /// [`GUARDED_IMPROVEMENT`] triangles, the mesh before stands if the one after has more
     /// triangles or a smaller angle (with `Y`, new points may go where refinement had left bad
-    /// triangles whole). Finished, or cancelled.
+    /// triangles whole). Then [`Self::raise_smallest_angle`]. Finished, or cancelled.
     fn improve(&mut self) -> Outcome {
         self.improved = true;
         // Not under `S` (which counts insertions), nor with the user's test (which would be
@@ -359,7 +364,48 @@ impl<P: Predicates> Driver<'_, '_, P> {
                 return Outcome::Finished;
             }
         }
-        outcome
+        if outcome != Outcome::Finished {
+            return outcome;
+        }
+        self.raise_smallest_angle()
+    }
+
+    /// Raises the smallest angle of an improved mesh of up to [`RAISE_UP_TO`] triangles where
+    /// that costs no triangle: the worst triangle is split as refinement would split it, the
+    /// mesh around the new vertex improved again and refined; the result stands if it has no
+    /// more triangles and a larger smallest angle, else the mesh before does, and it stops.
+    /// At most [`RAISES`] times. Decimation keeps the smallest angle but never lifts it past a
+    /// triangle that refinement had no reason to split (measured on Triangle's example files:
+    /// a larger smallest angle on 25 of the 132 cases with triangles, none smaller; fewer
+    /// triangles on 5, none more — `dots.node q34` 34.18° → 36.42° with 659 triangles instead
+    /// of 762; 23 % more time in all).
+    /// Finished, or cancelled.
+    fn raise_smallest_angle(&mut self) -> Outcome {
+        for _ in 0..RAISES {
+            let triangles = self.inside_triangle_count();
+            if triangles > RAISE_UP_TO {
+                break;
+            }
+            let smallest = smallest_angle_sin2(self.refinement.mesh());
+            let mut before = self.refinement.copy_aside();
+            let Some(new) = self.refinement.split_worst_triangle() else {
+                break;
+            };
+            self.refinement.improve_near(Some(new));
+            self.refinement.forget_kept_whole();
+            let outcome = self.run_within(None);
+            if outcome == Outcome::Cancelled {
+                return outcome;
+            }
+            let better = outcome == Outcome::Finished
+                && self.inside_triangle_count() <= triangles
+                && smallest_angle_sin2(self.refinement.mesh()) > smallest;
+            if !better {
+                self.refinement.exchange(&mut before);
+                break;
+            }
+        }
+        Outcome::Finished
     }
 
     /// Seeds the unrefined domain with lattice points where a fixed area bound governs

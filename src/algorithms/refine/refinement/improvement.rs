@@ -36,6 +36,7 @@ use std::f64::consts::FRAC_1_SQRT_2;
 
 use super::Refinement;
 use crate::algorithms::delaunay::Location;
+use crate::algorithms::refine::walk::{walk, Walk};
 use crate::algorithms::refine::{inside, VertexKind};
 use crate::geometry::{frame_coordinates, min_angle_sin2, Point, Predicates};
 use crate::mesh::{TriangleId, VertexId, GHOST};
@@ -112,6 +113,13 @@ impl<P: Predicates> Refinement<'_, '_, P> {
 
     /// Smooths and decimates the finished mesh (see the module documentation).
     pub(in crate::algorithms::refine) fn improve(&mut self) {
+        self.improve_near(None);
+    }
+
+    /// Smooths and decimates the vertices within two rings of `near` (after a change there:
+    /// see [`Self::split_worst_triangle`]), or, with `None`, the whole mesh, and in later rounds
+    /// those near a change of the round before.
+    pub(in crate::algorithms::refine) fn improve_near(&mut self, near: Option<VertexId>) {
         let mut floor = self.smallest_good_angle_sin2();
         let mut free: Vec<VertexId> = (0..self.kinds.len() as u32)
             .map(VertexId::new)
@@ -130,8 +138,30 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         // Per vertex, the last round in which it or a neighbour changed: after the first round,
         // only those of the round before or this one are tried again.
         let mut touched = vec![0u32; self.kinds.len()];
+        // Round 1 tries every vertex; after a local change, the rounds start at 2 with the
+        // vertices near it marked as changed in round 1.
+        let first_round = match near {
+            None => 1,
+            Some(v) => {
+                let mesh = self.mesh();
+                let ring: Vec<VertexId> = mesh.star(v).map(|e| mesh.dest(e)).collect();
+                for &u in ring.iter().chain([&v]) {
+                    if u == GHOST {
+                        continue;
+                    }
+                    touched[u.index()] = 1;
+                    for e in mesh.star(u) {
+                        let x = mesh.dest(e);
+                        if x != GHOST {
+                            touched[x.index()] = 1;
+                        }
+                    }
+                }
+                2
+            }
+        };
         let mut around = Vec::new();
-        for round in 1..=(ROUNDS + POLISHING_ROUNDS) as u32 {
+        for round in first_round..=(ROUNDS + POLISHING_ROUNDS) as u32 {
             let mut changed = 0;
             let steps: &[Step] = if round as usize > ROUNDS {
                 &[Step::Smooth, Step::Slide]
@@ -503,6 +533,56 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         }
         let points = mesh.triangle(t).map(|v| mesh.point(v));
         min_angle_sin2(points) >= floor * (1.0 + MARGIN) && !self.too_big(t, points)
+    }
+
+    /// Splits the mesh's worst triangle as refinement would (its split point, or the
+    /// subsegments that point would encroach, Ruppert's rule), and smooths a new free vertex.
+    /// Whether it split anything: the caller compares the meshes before and after.
+    pub(in crate::algorithms::refine) fn split_worst_triangle(&mut self) -> Option<VertexId> {
+        let (t, _) = self.worst_triangle()?;
+        let split = |this: &mut Self, e| {
+            (this.may_split(e) && this.split_segment(e))
+                .then(|| VertexId::new(this.kinds.len() as u32 - 1))
+        };
+        let corners = self.mesh().triangle(t);
+        let (x, xi, eta) = self
+            .angle
+            .split_point(corners.map(|v| self.mesh().point(v)));
+        let x = self.placed(x);
+        if !(x[0].is_finite() && x[1].is_finite()) {
+            return None;
+        }
+        let location = match walk::<P>(self.mesh(), t, x) {
+            Walk::Found(Location::OnVertex(_)) | Walk::Lost => return None,
+            Walk::Blocked(s) => return split(self, s),
+            Walk::Found(location) => location,
+        };
+        let encroached =
+            self.cavity
+                .encroached_by::<P>(self.cdt.mesh(), &self.encroachment, x, location);
+        if let Some(&(_, _, e)) = encroached.first() {
+            return split(self, e);
+        }
+        if self.too_close(x, location) {
+            return None;
+        }
+        let vertex = self.new_vertex(x, VertexKind::Free);
+        self.attributes.push_in_triangle(corners, xi, eta);
+        if self.cdt.insert_at(vertex, location).is_err() {
+            self.kinds[vertex.index()] = VertexKind::Deleted;
+            return None;
+        }
+        self.try_smoothing(vertex, 0.0, &mut Vec::new(), THOROUGH_SEARCH);
+        Some(vertex)
+    }
+
+    /// The domain's triangle with the smallest angle, and that angle's sine squared.
+    fn worst_triangle(&self) -> Option<(TriangleId, f64)> {
+        let mesh = self.mesh();
+        mesh.triangles()
+            .filter(|&t| inside(mesh, t))
+            .map(|t| (t, min_angle_sin2(mesh.triangle(t).map(|v| mesh.point(v)))))
+            .min_by(|a, b| a.1.total_cmp(&b.1))
     }
 
     /// The quality of the domain's triangles around `vertices` (each once): the smallest
