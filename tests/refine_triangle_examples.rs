@@ -668,3 +668,56 @@ fn above_30_degrees_refinement_does_not_cascade_where_triangles_does_not() {
         );
     }
 }
+
+/// With `Y`/`YY`, a bad triangle that only a vertex on a segment kept whole could mend stays
+/// (a point that would encroach such a segment does not go in), as in Triangle, and the
+/// improvement may delete a vertex where the triangles around it are no worse. Ours must be
+/// valid, no larger than Triangle's, and leave no more triangles below θ than Triangle's
+/// (issue 24: `la.poly` with `pqYY` made 1.08× Triangle's triangles, `double_hex3.poly` with
+/// `pqY` 1.17×).
+#[test]
+fn with_y_bad_triangles_stay_as_in_triangle_and_no_more() {
+    let triangle = reference_or_fail();
+    let files = example_files(&data_dir());
+    let below = |mesh: &MeshView<'_>, theta: f64| {
+        mesh.triangles
+            .iter()
+            .filter(|c| {
+                let [a, b, d] = c.map(|v| mesh.points[v]);
+                angles(a, b, d).into_iter().fold(180.0, f64::min) < theta
+            })
+            .count()
+    };
+    for name in [
+        "la.poly",
+        "double_hex3.poly",
+        "A.poly",
+        "face.poly",
+        "double_hex.poly",
+    ] {
+        for switches in ["pqY", "pqYY"] {
+            let file = example_named(&files, name);
+            let example = Example {
+                name: name.to_string(),
+                input: file.input.clone(),
+                switches: Vec::new(),
+            };
+            let full = format!("{switches}zQ");
+            let context = format!("{name}, \"{full}\"");
+            let theirs = triangle.triangulate(&full, &example.input);
+            let ours = ours(&full, &example.input).unwrap_or_else(|e| panic!("{context}: {e}"));
+            check_output(&example, switches, "Triangle's", &theirs);
+            check_output(&example, switches, "our", &ours);
+            let theirs = MeshView::of(&theirs).unwrap_or_else(|e| panic!("{context}: {e}"));
+            let ours = MeshView::of(&ours).unwrap_or_else(|e| panic!("{context}: {e}"));
+            let (o, t) = (ours.triangles.len(), theirs.triangles.len());
+            let (ob, tb) = (below(&ours, 20.0), below(&theirs, 20.0));
+            println!("{context}: {o} triangles, {ob} below 20° (Triangle {t}, {tb})");
+            assert!(o <= t, "{context}: {o} triangles, Triangle {t}");
+            assert!(
+                ob <= tb,
+                "{context}: {ob} triangles below 20°, Triangle's {tb}"
+            );
+        }
+    }
+}
