@@ -34,7 +34,7 @@ use std::collections::{HashMap, HashSet};
 
 use common::call::{MeshInput, Triangulation};
 use common::checks::{convex_hull, orient2d};
-use common::examples::{area_switch, data_dir, example_files, example_named, Kind};
+use common::examples::{area_switch, data_dir, example_files, example_named, ExampleFile, Kind};
 use common::points::Point;
 use common::pslg::{polygon_area, with_hull_segments};
 use common::pslg_checks::{check_constrained_delaunay, segment_chains, MeshView};
@@ -622,6 +622,25 @@ fn beyond_the_guaranteed_angle_triangles_examples_end_at_28_6_degrees_or_better(
     }
 }
 
+/// Example file `name` as an example without switch sets of its own, and Triangle's and our
+/// outputs on it with `switches` (and `zQ`).
+fn both_on_file(
+    files: &[ExampleFile],
+    name: &str,
+    switches: &str,
+    triangle: &Reference,
+) -> (Example, Triangulation, Triangulation) {
+    let example = Example {
+        name: name.to_string(),
+        input: example_named(files, name).input.clone(),
+        switches: Vec::new(),
+    };
+    let full = format!("{switches}zQ");
+    let theirs = triangle.triangulate(&full, &example.input);
+    let ours = ours(&full, &example.input).unwrap_or_else(|e| panic!("{name}, {full}: {e}"));
+    (example, theirs, ours)
+}
+
 /// Above 30° every split of a skinny triangle makes an edge shorter than its shortest, so
 /// refinement can cascade far from any input feature: on the Greenland mesh with `rq34` it once
 /// made 5.4× Triangle's triangles, all in the interior (issue 24). Ours must be valid, reach θ,
@@ -643,15 +662,8 @@ fn above_30_degrees_refinement_does_not_cascade_where_triangles_does_not() {
         ("face.poly", "pq34"),
     ];
     for (name, switches) in cases {
-        let file = example_named(&files, name);
-        let example = Example {
-            name: name.to_string(),
-            input: file.input.clone(),
-            switches: Vec::new(),
-        };
+        let (example, theirs, ours) = both_on_file(&files, name, switches, triangle);
         let full = format!("{switches}zQ");
-        let theirs = triangle.triangulate(&full, &example.input);
-        let ours = ours(&full, &example.input).unwrap_or_else(|e| panic!("{name}, {full}: {e}"));
         // Only ours is checked whole: without `p`, Triangle's output with `r` lists no
         // segments for the mesh's boundary (the check of the chains needs them).
         let theirs = MeshView::of(&theirs).unwrap_or_else(|e| panic!("{name}, {full}: {e}"));
@@ -696,16 +708,8 @@ fn with_y_bad_triangles_stay_as_in_triangle_and_no_more() {
         "double_hex.poly",
     ] {
         for switches in ["pqY", "pqYY"] {
-            let file = example_named(&files, name);
-            let example = Example {
-                name: name.to_string(),
-                input: file.input.clone(),
-                switches: Vec::new(),
-            };
-            let full = format!("{switches}zQ");
-            let context = format!("{name}, \"{full}\"");
-            let theirs = triangle.triangulate(&full, &example.input);
-            let ours = ours(&full, &example.input).unwrap_or_else(|e| panic!("{context}: {e}"));
+            let (example, theirs, ours) = both_on_file(&files, name, switches, triangle);
+            let context = format!("{name}, \"{switches}zQ\"");
             check_output(&example, switches, "Triangle's", &theirs);
             check_output(&example, switches, "our", &ours);
             let theirs = MeshView::of(&theirs).unwrap_or_else(|e| panic!("{context}: {e}"));
