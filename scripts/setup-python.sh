@@ -11,4 +11,4 @@ cd "$(dirname "$0")/.."
 if [ ! -x .venv/bin/python ]; then
   python3 -m venv .venv
 fi
-.venv/bin/pip install -q --disable-pip-version-check numpy matplotlib pytest "setuptools>=64" wheel triangle meshio "dask[array]" distributed
+.venv/bin/pip install -q --disable-pip-version-check numpy matplotlib pytest "setuptools>=64" wheel triangle meshio "dask[array]>=2023.1" "distributed>=2023.1"
