@@ -537,7 +537,7 @@ impl<P: Predicates> Refinement<'_, '_, P> {
 
     /// Splits the mesh's worst triangle as refinement would (its split point, or the
     /// subsegments that point would encroach, Ruppert's rule), and smooths a new free vertex.
-    /// Whether it split anything: the caller compares the meshes before and after.
+    /// The new vertex, if it split anything: the caller compares the meshes before and after.
     pub(in crate::algorithms::refine) fn split_worst_triangle(&mut self) -> Option<VertexId> {
         let (t, _) = self.worst_triangle()?;
         let split = |this: &mut Self, e| {
