@@ -385,13 +385,9 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
     /// Splits bad triangle `t` at its split point, or — when a segment hides the point or the
     /// point would encroach subsegments — splits those instead (Ruppert's rule).
     fn split_triangle(&mut self, t: TriangleId, bad: BadTriangle) {
-        let corners = self.mesh().triangle(t);
-        let points = corners.map(|v| self.mesh().point(v));
-        let (x, xi, eta) = self.angle.split_point(points);
-        let x = self.placed(x);
-        if !(x[0].is_finite() && x[1].is_finite()) {
+        let Some((x, frame)) = self.split_point_of(t) else {
             return;
-        }
+        };
         match walk::<P>(self.mesh(), t, x) {
             Walk::Lost => self.tally.skipped += 1,
             Walk::Blocked(s) => {
@@ -434,12 +430,40 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
                     self.tally.skipped += 1;
                     return;
                 }
-                let vertex = self.new_vertex(x, VertexKind::Free);
-                self.attributes.push_in_triangle(corners, xi, eta);
-                let _ = self.cdt.insert_at(vertex, location);
-                self.after_insertion(vertex);
+                if let Some(vertex) = self.insert_free_vertex(x, t, frame, location) {
+                    self.after_insertion(vertex);
+                }
             }
         }
+    }
+
+    /// The split point of triangle `t` ([`AngleBound::split_point`], rounded to the caller's
+    /// grid once the mesh is on it) with its frame coordinates in `t`, where it is finite.
+    fn split_point_of(&self, t: TriangleId) -> Option<(Point, (f64, f64))> {
+        let points = self.mesh().triangle(t).map(|v| self.mesh().point(v));
+        let (x, xi, eta) = self.angle.split_point(points);
+        let x = self.placed(x);
+        (x[0].is_finite() && x[1].is_finite()).then_some((x, (xi, eta)))
+    }
+
+    /// Inserts a free vertex at `x`, found at `location` from triangle `t`, its attributes
+    /// interpolated at frame coordinates `(xi, eta)` in `t`. The vertex, unless it fell on
+    /// another (then it is deleted again).
+    fn insert_free_vertex(
+        &mut self,
+        x: Point,
+        t: TriangleId,
+        (xi, eta): (f64, f64),
+        location: Location,
+    ) -> Option<VertexId> {
+        let corners = self.mesh().triangle(t);
+        let vertex = self.new_vertex(x, VertexKind::Free);
+        self.attributes.push_in_triangle(corners, xi, eta);
+        if self.cdt.insert_at(vertex, location).is_err() {
+            self.kinds[vertex.index()] = VertexKind::Deleted;
+            return None;
+        }
+        Some(vertex)
     }
 
     /// Splits the given subsegments (`(origin, dest, half-edge)`) instead of a bad triangle whose

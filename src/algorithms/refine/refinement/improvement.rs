@@ -541,17 +541,13 @@ impl<P: Predicates> Refinement<'_, '_, P> {
     pub(in crate::algorithms::refine) fn split_worst_triangle(&mut self) -> Option<VertexId> {
         let (t, _) = self.worst_triangle()?;
         let split = |this: &mut Self, e| {
-            (this.may_split(e) && this.split_segment(e))
-                .then(|| VertexId::new(this.kinds.len() as u32 - 1))
+            if this.may_split(e) {
+                this.split_segment(e)
+            } else {
+                None
+            }
         };
-        let corners = self.mesh().triangle(t);
-        let (x, xi, eta) = self
-            .angle
-            .split_point(corners.map(|v| self.mesh().point(v)));
-        let x = self.placed(x);
-        if !(x[0].is_finite() && x[1].is_finite()) {
-            return None;
-        }
+        let (x, frame) = self.split_point_of(t)?;
         let location = match walk::<P>(self.mesh(), t, x) {
             Walk::Found(Location::OnVertex(_)) | Walk::Lost => return None,
             Walk::Blocked(s) => return split(self, s),
@@ -566,12 +562,7 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         if self.too_close(x, location) {
             return None;
         }
-        let vertex = self.new_vertex(x, VertexKind::Free);
-        self.attributes.push_in_triangle(corners, xi, eta);
-        if self.cdt.insert_at(vertex, location).is_err() {
-            self.kinds[vertex.index()] = VertexKind::Deleted;
-            return None;
-        }
+        let vertex = self.insert_free_vertex(x, t, frame, location)?;
         self.try_smoothing(vertex, 0.0, &mut Vec::new(), THOROUGH_SEARCH);
         Some(vertex)
     }

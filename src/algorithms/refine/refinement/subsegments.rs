@@ -54,7 +54,7 @@ impl<P: Predicates> Refinement<'_, '_, P> {
                 continue;
             };
             let still = self.encroachment.apex_encroaches(self.mesh(), e);
-            if (queued.forced || still) && self.split_segment(e) {
+            if (queued.forced || still) && self.split_segment(e).is_some() {
                 splits += 1;
             }
         }
@@ -75,11 +75,11 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         mesh.is_segment(e).then_some(e)
     }
 
-    /// Splits the subsegment of half-edge `e`; returns whether it did. It does not when the
+    /// Splits the subsegment of half-edge `e`; returns the new vertex if it did. It does not when the
     /// pieces would be shorter than the floor, or when the rounded split point would make
     /// inverted triangles or move the domain's boundary by more than rounding
     /// ([`splits_faithfully`]). Such a subsegment is never tried again.
-    pub(super) fn split_segment(&mut self, e: EdgeId) -> bool {
+    pub(super) fn split_segment(&mut self, e: EdgeId) -> Option<VertexId> {
         let mesh = self.mesh();
         let (u, v) = (mesh.origin(e), mesh.dest(e));
         let (t, kind) = split_parameter(mesh, &self.kinds, u, v);
@@ -101,14 +101,14 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         if !splits {
             self.unsplittable.insert((u.min(v), u.max(v)));
             self.tally.skipped += 1;
-            return false;
+            return None;
         }
         let vertex = self.new_vertex(p, kind);
         self.attributes.push_on_segment(u, v, t);
         let _ = self.cdt.insert_at(vertex, Location::OnEdge(e));
         self.cdt.settle(vertex);
         self.after_insertion(vertex);
-        true
+        Some(vertex)
     }
 
     /// Deletes the free vertices strictly inside the diametral circle of the subsegment of `e`,
