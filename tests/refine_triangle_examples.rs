@@ -725,3 +725,48 @@ fn with_y_bad_triangles_stay_as_in_triangle_and_no_more() {
         }
     }
 }
+
+/// Decimation keeps the mesh's smallest angle but never lifts it, and the raise after it lifts
+/// it where that costs no triangle, or once a few for much (`Driver::raise_smallest_angle`).
+/// Ours must be valid, no larger than Triangle's and no worse in smallest angle on the issue's
+/// case (`double_hex2.poly` with `pq`: 66 triangles at 20.96° where Triangle's 68 have 21.03°)
+/// and others where the mesh's worst triangle is one refinement made (issue 24).
+#[test]
+fn improved_meshes_keep_triangles_smallest_angle_with_no_more_triangles() {
+    let triangle = reference_or_fail();
+    let files = example_files(&data_dir());
+    let cases = [
+        ("double_hex2.poly", "pq"),
+        ("double_hex2.poly", "pqD"),
+        ("double_hex2.poly", "pqY"),
+        ("double_hex2.poly", "pq30"),
+        ("double_hex.poly", "pq"),
+        ("double_hex3.poly", "pq30"),
+        ("A.poly", "pqD"),
+        ("face.poly", "pq34"),
+        ("dots.node", "q34"),
+        ("square_circle_hole.poly", "pq30a0.03125"),
+    ];
+    for (name, switches) in cases {
+        let (example, theirs, ours) = both_on_file(&files, name, switches, triangle);
+        let context = format!("{name}, \"{switches}zQ\"");
+        let t = check_output(&example, switches, "Triangle's", &theirs);
+        let o = check_output(&example, switches, "our", &ours);
+        println!(
+            "{context}: {} triangles at {:.4}° (Triangle {} at {:.4}°)",
+            o.triangles, o.smallest_angle, t.triangles, t.smallest_angle
+        );
+        assert!(
+            o.triangles <= t.triangles,
+            "{context}: {} triangles, Triangle {}",
+            o.triangles,
+            t.triangles
+        );
+        assert!(
+            o.smallest_angle >= t.smallest_angle - ANGLE_TOLERANCE,
+            "{context}: smallest angle {}°, Triangle's {}°",
+            o.smallest_angle,
+            t.smallest_angle
+        );
+    }
+}

@@ -567,6 +567,17 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         Some(vertex)
     }
 
+    /// Whether the mesh's worst triangle has a free corner (a vertex refinement put there, not
+    /// an input vertex or one on a segment).
+    pub(in crate::algorithms::refine) fn worst_triangle_has_free_corner(&self) -> bool {
+        self.worst_triangle().is_some_and(|(t, _)| {
+            self.mesh()
+                .triangle(t)
+                .iter()
+                .any(|v| matches!(self.kinds[v.index()], VertexKind::Free | VertexKind::Seed))
+        })
+    }
+
     /// The domain's triangle with the smallest angle, and that angle's sine squared.
     fn worst_triangle(&self) -> Option<(TriangleId, f64)> {
         let mesh = self.mesh();
