@@ -88,6 +88,7 @@ pub fn refine<P: Predicates>(
         runaway_limit,
         warnings: Vec::new(),
         improved: false,
+        raisable: false,
     };
     let from_the_start = quality.caller_grid.is_some_and(|c| c.from_the_start);
     if from_the_start && !driver.refinement.move_onto_caller_grid() {
@@ -109,6 +110,10 @@ pub fn refine<P: Predicates>(
     // not), in the frame it was refined in.
     if outcome == Outcome::Finished && !driver.improved {
         outcome = driver.improve();
+    }
+    // Once, on the mesh that stands.
+    if outcome == Outcome::Finished && driver.raisable {
+        outcome = driver.raise_smallest_angle();
     }
     // In a frame finer than the caller's: the mesh goes onto the caller's grid, and what
     // rounding spoiled there is refined again, at the angle of the last run, with new points on
@@ -174,6 +179,9 @@ struct Driver<'r, 'q, P: Predicates> {
     warnings: Vec<Warning>,
     /// Whether the live state is improved already ([`Self::improve`]).
     improved: bool,
+    /// Whether the live state's smallest angle is to be raised
+    /// ([`Self::raise_smallest_angle`]): it was improved, and kept improved.
+    raisable: bool,
 }
 
 impl<P: Predicates> Driver<'_, '_, P> {
@@ -314,6 +322,7 @@ impl<P: Predicates> Driver<'_, '_, P> {
             return Outcome::Cancelled;
         }
         let straight_triangles = self.inside_triangle_count();
+        let straight_raisable = self.raisable;
         // Live: the unrefined state, in the other order; aside: the straight run's.
         self.refinement.exchange(aside);
         self.refinement.set_order(QueueOrder::WorstAngle);
@@ -327,6 +336,7 @@ impl<P: Predicates> Driver<'_, '_, P> {
             outcome == Outcome::Finished && self.inside_triangle_count() < straight_triangles;
         if !better {
             self.refinement.exchange(aside);
+            self.raisable = straight_raisable;
         }
         self.refinement.set_order(QueueOrder::ShortestEdge);
         match outcome {
@@ -340,9 +350,11 @@ impl<P: Predicates> Driver<'_, '_, P> {
     /// put back, an area bound after flips, a subsegment that a moved vertex encroaches). Up to
     /// [`GUARDED_IMPROVEMENT`] triangles, the mesh before stands if the one after has more
     /// triangles or a smaller angle (with `Y`, new points may go where refinement had left bad
-    /// triangles whole). Then [`Self::raise_smallest_angle`]. Finished, or cancelled.
+    /// triangles whole). Finished, or cancelled; the caller then raises the smallest angle of
+    /// the mesh that stands, once ([`Self::raise_smallest_angle`], where `raisable` says so).
     fn improve(&mut self) -> Outcome {
         self.improved = true;
+        self.raisable = false;
         // Not under `S` (which counts insertions), nor with the user's test (which would be
         // asked about every triangle tried: slow where it is a script's callback, and it may
         // answer by a state of its own, as Triangle's callers' tests may).
@@ -367,10 +379,8 @@ impl<P: Predicates> Driver<'_, '_, P> {
                 return Outcome::Finished;
             }
         }
-        if outcome != Outcome::Finished {
-            return outcome;
-        }
-        self.raise_smallest_angle()
+        self.raisable = outcome == Outcome::Finished;
+        outcome
     }
 
     /// Raises the smallest angle of an improved mesh of up to [`RAISE_UP_TO`] triangles where
