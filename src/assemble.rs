@@ -356,7 +356,8 @@ impl<'a> FinishedMesh<'a> {
         let markers = self.segment_markers.unwrap_or(&[]);
         // Per segment id, 1 + the index of its later copy (0: none); only when there are any.
         let mut copy_of_id = Vec::new();
-        if !self.later_copies.is_empty() {
+        // (No markers: a mesh eaten whole by its holes tracks no segments.)
+        if self.segment_markers.is_some() && !self.later_copies.is_empty() {
             copy_of_id = vec![0u32; markers.len()];
             for (k, copy) in self.later_copies.iter().enumerate() {
                 copy_of_id[copy.id as usize] = k as u32 + 1;

@@ -330,3 +330,26 @@ fn repeated_segments_take_the_first_nonzero_marker() {
         );
     }
 }
+
+/// A domain its holes eat whole leaves no triangle and no segment to mark vertices by; a segment
+/// given again with a marker (a later copy) once made our output writer index the markers of
+/// segments the empty mesh no longer has ("Internal error": found by the fuzz driver). Ours must
+/// give an empty mesh, as Triangle does, with and without refinement.
+#[test]
+fn a_domain_eaten_whole_with_a_segment_given_again_gives_an_empty_mesh() {
+    let Some(triangle) = reference() else { return };
+    let input = MeshInput {
+        segments: vec![[1, 2], [2, 3], [3, 1], [2, 1]],
+        segment_markers: Some(vec![0, 2, 2, 7]),
+        holes: vec![[0.4, 0.3]],
+        ..MeshInput::from_points(vec![[0.0, 0.0], [1.0, 0.1], [0.2, 0.9]])
+    };
+    for switches in ["pQ", "pqQ", "pa0.01Q", "pq30a0.01Q", "pDQ", "pcQ"] {
+        let theirs = triangle.triangulate(switches, &input);
+        let ours = ours(switches, &input).unwrap_or_else(|e| panic!("\"{switches}\": {e}"));
+        let count =
+            |t: &common::call::Triangulation| t.triangles.as_ref().map_or(0, |t| t.len() / 3);
+        assert_eq!(count(&ours), count(&theirs), "\"{switches}\"");
+        assert_eq!(count(&ours), 0, "\"{switches}\"");
+    }
+}

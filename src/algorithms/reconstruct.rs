@@ -77,6 +77,7 @@ pub fn reconstruct<P: Predicates>(
 mod tests {
     use super::*;
     use crate::geometry::Exact;
+    use crate::mesh::GHOST;
 
     #[test]
     fn square_with_a_hole_and_a_bowtie_vertex() {
@@ -102,10 +103,40 @@ mod tests {
         points.push([4.0, 4.0]);
         points.push([3.0, 5.0]);
         tris.extend_from_slice(&[15, 17, 16]);
-        let mesh = reconstruct::<Exact>(points, &tris, 3, 0).unwrap();
+        let mut mesh = reconstruct::<Exact>(points, &tris, 3, 0).unwrap();
         mesh.check_topology().unwrap();
         let ghosts = mesh.triangles().filter(|&t| mesh.is_ghost(t)).count();
         assert_eq!(ghosts, 12 + 4 + 3);
+        // The star of the bowtie vertex is one cycle through both parts, counter-clockwise:
+        // every edge at it is found by turning around it.
+        mesh.track_vertex_edges();
+        let bowtie = VertexId::new(15);
+        let around: Vec<u32> = mesh.star(bowtie).map(|e| mesh.dest(e).raw()).collect();
+        let mut real: Vec<u32> = around
+            .iter()
+            .copied()
+            .filter(|&v| v != GHOST.raw())
+            .collect();
+        real.sort_unstable();
+        assert_eq!(real, [10, 11, 14, 16, 17], "star {around:?}");
+        for v in [10, 11, 14, 16, 17] {
+            assert!(mesh.find_edge(bowtie, VertexId::new(v)).is_some());
+        }
+        // In angular order: the turns from each neighbour's direction to the next add up to
+        // one full turn (two or more if the parts came out of order).
+        let tau = 2.0 * std::f64::consts::PI;
+        let directions: Vec<f64> = around
+            .iter()
+            .filter(|&&v| v != GHOST.raw())
+            .map(|&v| {
+                let (p, q) = (mesh.point(bowtie), mesh.point(VertexId::new(v)));
+                (q[1] - p[1]).atan2(q[0] - p[0])
+            })
+            .collect();
+        let turns: f64 = (0..directions.len())
+            .map(|i| (directions[(i + 1) % directions.len()] - directions[i]).rem_euclid(tau))
+            .sum();
+        assert!((turns - tau).abs() < 1e-9, "{turns}");
         assert!(
             reconstruct::<Exact>(vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], &[0, 1, 3], 3, 0)
                 .is_err()

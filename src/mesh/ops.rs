@@ -117,7 +117,11 @@ impl Mesh {
     /// neighbours around the boundary vertices. The boundary need not be convex, and may have
     /// holes and vertices where two parts of the mesh touch: around boundary vertex `v`, turning
     /// counter-clockwise inside the mesh from the boundary edge leaving `v` reaches the boundary
-    /// edge entering `v` in the same part, and their ghosts share `v–∞`. A ghost takes the
+    /// edge entering `v` in the same part (a fan). Where one fan meets `v`, the ghosts of those
+    /// two edges share `v–∞`; where several do (a pinch: a bow-tie's waist), the ghost of each
+    /// fan's entering edge shares `v–∞` with the ghost of the leaving edge of the next fan
+    /// counter-clockwise, so that the star of `v` is still one cycle, in angular order, and
+    /// every edge at `v` is found by turning around it ([`Self::find_edge`]). A ghost takes the
     /// segment id of its boundary edge and the tag [`OUTSIDE`].
     pub fn cover_boundary_with_ghosts(&mut self) {
         let boundary: Vec<u32> = (0..self.corners.len() as u32)
@@ -127,6 +131,9 @@ impl Mesh {
             let g = self.add_triangle_raw(self.dst(h), self.c(h), G);
             self.link_raw(h, 3 * g);
         }
+        // Per boundary half-edge h = v → w: v, the direction of h, the ghost's v → ∞ and the
+        // ∞ → v of the ghost of the edge entering v in h's fan.
+        let mut fans: Vec<(u32, f64, u32, u32)> = Vec::with_capacity(boundary.len());
         for &h in &boundary {
             let entering = self
                 .star_from(EdgeId::new(h))
@@ -137,7 +144,18 @@ impl Mesh {
             // Ghost of h: (w, v, ∞) with slot 1 = v → ∞; ghost of the entering edge x → v:
             // (v, x, ∞) with slot 2 = ∞ → v.
             let (g, ghost_prev) = (triangle_of(self.tw(h)), triangle_of(entering));
-            self.link_raw(3 * g + 1, 3 * ghost_prev + 2);
+            let (v, w) = (self.pt(self.c(h)), self.pt(self.dst(h)));
+            let direction = (w[1] - v[1]).atan2(w[0] - v[0]);
+            fans.push((self.c(h), direction, 3 * g + 1, 3 * ghost_prev + 2));
+        }
+        // By vertex, then counter-clockwise (fans at one vertex are disjoint sectors: their
+        // leaving edges differ in direction).
+        fans.sort_unstable_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)));
+        for at_vertex in fans.chunk_by(|a, b| a.0 == b.0) {
+            for (k, fan) in at_vertex.iter().enumerate() {
+                let next = &at_vertex[(k + 1) % at_vertex.len()];
+                self.link_raw(next.2, fan.3);
+            }
         }
         if !self.segment.is_empty() {
             self.segment.resize(self.corners.len(), NONE);

@@ -140,6 +140,8 @@ pub const SHAPES: &[&str] = &[
     "spiral",
     "square_circular_hole",
     "three_regions",
+    "pinched",
+    "bow_tie",
 ];
 
 /// The path of a shape's `.poly` file.

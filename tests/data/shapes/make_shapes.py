@@ -155,6 +155,40 @@ with attributes 1, 2, 3 and maximum areas 0.5, 0.25 and none (-1).""",
                regions=[(1.0, 1.5, 1.0, 0.5), (3.5, 2.5, 2.0, 0.25), (5.0, 1.5, 3.0, -1.0)])
 
 
+def pinched():
+    # A square with two diamond holes: the lower touches the square's bottom side at a vertex,
+    # the upper touches the lower at a vertex and the top side at another. What is left of the
+    # square is two parts that meet only at those three vertices (pinches).
+    pts = [(0.0, 0.0, 1), (2.05, 0.0, 0), (4.0, 0.0, 1), (4.0, 4.1, 1), (1.95, 4.1, 0),
+           (0.0, 4.1, 1),
+           (3.02, 1.0, 0), (2.0, 2.03, 0), (0.98, 1.07, 0),
+           (3.01, 3.05, 0), (1.03, 2.96, 0)]
+    vertices = [(x, y, [], m) for x, y, m in pts]
+    segments = [(1, 2, 2), (2, 3, 2), (3, 4, 3), (4, 5, 4), (5, 6, 4), (6, 1, 5)]
+    segments += [(2, 7, 6), (7, 8, 6), (8, 9, 6), (9, 2, 6)]
+    segments += [(8, 10, 7), (10, 5, 7), (5, 11, 7), (11, 8, 7)]
+    write_poly("pinched", """
+A square with two diamond holes that touch each other and the square's sides at vertices: the
+domain is two parts meeting only at three pinch vertices (segment markers 2 to 7).""",
+               vertices, segments, holes=[(2.0, 1.0), (2.0, 3.05)])
+
+
+def bow_tie():
+    # Two triangles joined at one vertex, and a third at the same vertex: three fans there; two
+    # free vertices inside each.
+    pts = [(0.0, 0.0, 1), (1.0, 0.48, 0), (0.05, 1.0, 1), (2.0, 0.02, 1), (1.97, 1.03, 1),
+           (0.6, 1.9, 1), (1.45, 1.85, 1),
+           (0.36, 0.44, 0), (0.21, 0.29, 0), (1.61, 0.55, 0), (1.76, 0.31, 0), (1.02, 1.41, 0),
+           (0.87, 1.66, 0)]
+    vertices = [(x, y, [], m) for x, y, m in pts]
+    segments = [(1, 2, 2), (2, 3, 2), (3, 1, 3), (2, 4, 4), (4, 5, 5), (5, 2, 4),
+                (2, 7, 6), (7, 6, 7), (6, 2, 6)]
+    write_poly("bow_tie", """
+Three triangles that share one vertex and nothing else (a bow tie with a third wing): three
+parts of the domain meet at that vertex (segment markers 2 to 7); two free vertices in each.""",
+               vertices, segments, holes=[])
+
+
 if __name__ == "__main__":
     letter_a()
     box_in_box()
@@ -162,3 +196,5 @@ if __name__ == "__main__":
     spiral()
     square_with_circular_hole()
     three_regions()
+    pinched()
+    bow_tie()
