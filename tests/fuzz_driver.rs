@@ -1,6 +1,7 @@
 //! The fuzz targets' checks (`fuzz/cases.rs`) on stable Rust: seeded random byte strings through
 //! each case for a bounded number of cases (and at most `FUZZ_SECONDS`, default 20 per target,
-//! so that the suite stays short; the cases run in a fixed order, so a failure names its seed and
+//! so that the suite stays short; the cases run in a fixed order (`FUZZ_SEED` shifts the seeds, for
+//! a longer campaign past the cases every run makes), so a failure names its seed and
 //! reproduces). A long campaign runs the same cases under libFuzzer: see fuzz/README.md.
 
 #[path = "../fuzz/cases.rs"]
@@ -17,6 +18,8 @@ use common::timing::number_from_env;
 fn drive(name: &str, seed: u64, count: usize, max_len: usize, case: impl Fn(&[u8])) -> usize {
     let budget = Duration::from_secs(number_from_env("FUZZ_SECONDS", 20) as u64);
     let start = Instant::now();
+    // `FUZZ_SEED` shifts every target's seed, for a campaign past the cases every run makes.
+    let seed = seed.wrapping_add(number_from_env("FUZZ_SEED", 0) as u64);
     let mut rng = SplitMix64::new(seed);
     let mut ran = 0;
     while ran < count && start.elapsed() < budget {
