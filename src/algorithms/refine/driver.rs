@@ -6,10 +6,10 @@ use super::polling::Polling;
 use super::queue::QueueOrder;
 use super::refinement::{Aside, Refinement, RunEnd, Settings};
 use super::report::{Report, Warning};
-use super::{inside, Quality, VertexKind, GUARANTEED_ANGLE};
+use super::{inside, worst_triangle, Quality, VertexKind, GUARANTEED_ANGLE};
 use crate::algorithms::constrain::Constrainer;
 use crate::algorithms::domain::Domain;
-use crate::geometry::{min_angle_sin2, Predicates};
+use crate::geometry::Predicates;
 use crate::mesh::Mesh;
 
 /// [`Driver::raise_smallest_angle`]: its most tries, and the largest mesh it works on (each try
@@ -413,10 +413,12 @@ impl<P: Predicates> Driver<'_, '_, P> {
             if triangles > RAISE_UP_TO {
                 break;
             }
-            let smallest = smallest_angle_sin2(self.refinement.mesh());
-            let made_by_refinement = self.refinement.worst_triangle_has_free_corner();
+            let Some((worst, smallest)) = worst_triangle(self.refinement.mesh()) else {
+                break;
+            };
+            let made_by_refinement = self.refinement.has_free_corner(worst);
             let mut before = self.refinement.copy_aside();
-            let Some(new) = self.refinement.split_worst_triangle() else {
+            let Some(new) = self.refinement.split_worst_triangle(worst) else {
                 break;
             };
             self.refinement.improve_near(Some(new));
@@ -489,10 +491,7 @@ impl<P: Predicates> Driver<'_, '_, P> {
 
 /// The sine squared of the smallest angle of the domain's triangles (1 for none).
 fn smallest_angle_sin2(mesh: &Mesh) -> f64 {
-    mesh.triangles()
-        .filter(|&t| inside(mesh, t))
-        .map(|t| min_angle_sin2(mesh.triangle(t).map(|v| mesh.point(v))))
-        .fold(1.0, f64::min)
+    worst_triangle(mesh).map_or(1.0, |(_, sin2)| sin2)
 }
 
 /// The resolution refinement works at, from the extent of the vertices: the squared floor

@@ -21,7 +21,7 @@
 //! segment it cannot split, and stops at the Steiner-point budget (`S`) or when cancelled.
 
 use crate::data::{ProgressFn, UnsuitableFn};
-use crate::geometry::Grid;
+use crate::geometry::{min_angle_sin2, Grid};
 use crate::mesh::{Mesh, TriangleId, VertexId, OUTSIDE};
 
 // The parts, each a type with its own state:
@@ -112,4 +112,13 @@ enum VertexKind {
 /// triangles outside it are tagged [`OUTSIDE`]).
 fn inside(mesh: &Mesh, t: TriangleId) -> bool {
     mesh.tag(t) != OUTSIDE
+}
+
+/// The domain's triangle with the smallest angle, and that angle's sine squared (`None` for no
+/// triangle).
+fn worst_triangle(mesh: &Mesh) -> Option<(TriangleId, f64)> {
+    mesh.triangles()
+        .filter(|&t| inside(mesh, t))
+        .map(|t| (t, min_angle_sin2(mesh.triangle(t).map(|v| mesh.point(v)))))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
 }

@@ -535,11 +535,13 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         min_angle_sin2(points) >= floor * (1.0 + MARGIN) && !self.too_big(t, points)
     }
 
-    /// Splits the mesh's worst triangle as refinement would (its split point, or the
+    /// Splits the mesh's worst triangle `t` as refinement would (its split point, or the
     /// subsegments that point would encroach, Ruppert's rule), and smooths a new free vertex.
     /// The new vertex, if it split anything: the caller compares the meshes before and after.
-    pub(in crate::algorithms::refine) fn split_worst_triangle(&mut self) -> Option<VertexId> {
-        let (t, _) = self.worst_triangle()?;
+    pub(in crate::algorithms::refine) fn split_worst_triangle(
+        &mut self,
+        t: TriangleId,
+    ) -> Option<VertexId> {
         let split = |this: &mut Self, e| {
             if this.may_split(e) {
                 this.split_segment(e)
@@ -567,24 +569,13 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         Some(vertex)
     }
 
-    /// Whether the mesh's worst triangle has a free corner (a vertex refinement put there, not
-    /// an input vertex or one on a segment).
-    pub(in crate::algorithms::refine) fn worst_triangle_has_free_corner(&self) -> bool {
-        self.worst_triangle().is_some_and(|(t, _)| {
-            self.mesh()
-                .triangle(t)
-                .iter()
-                .any(|v| matches!(self.kinds[v.index()], VertexKind::Free | VertexKind::Seed))
-        })
-    }
-
-    /// The domain's triangle with the smallest angle, and that angle's sine squared.
-    fn worst_triangle(&self) -> Option<(TriangleId, f64)> {
-        let mesh = self.mesh();
-        mesh.triangles()
-            .filter(|&t| inside(mesh, t))
-            .map(|t| (t, min_angle_sin2(mesh.triangle(t).map(|v| mesh.point(v)))))
-            .min_by(|a, b| a.1.total_cmp(&b.1))
+    /// Whether triangle `t` has a free corner (a vertex refinement put there, not an input
+    /// vertex or one on a segment).
+    pub(in crate::algorithms::refine) fn has_free_corner(&self, t: TriangleId) -> bool {
+        self.mesh()
+            .triangle(t)
+            .iter()
+            .any(|v| matches!(self.kinds[v.index()], VertexKind::Free | VertexKind::Seed))
     }
 
     /// The quality of the domain's triangles around `vertices` (each once): the smallest
