@@ -970,3 +970,32 @@ fn a_vertex_within_rounding_of_a_segment_is_on_it() {
         });
     }
 }
+
+/// `D` on point sets with decimal coordinates (multiples of 1/10, 1/5, 1/20, 1/3, which doubles
+/// round): many vertices lie on or a rounding off the diametral circles of hull edges, where
+/// only an exact decision keeps every Voronoi vertex inside (`check_conforming_delaunay`, exact).
+#[test]
+fn conforming_delaunay_on_rounded_decimal_point_sets_is_exact() {
+    let mut rng = common::rng::SplitMix64::new(37);
+    for case in 0..400 {
+        let denominator = [10.0, 5.0, 20.0, 3.0][case % 4];
+        let steps = denominator as usize;
+        let mut points: Vec<[f64; 2]> = vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+        for _ in 0..(3 + rng.below(12)) {
+            let (i, j) = (rng.below(steps + 1), rng.below(steps + 1));
+            let p = [i as f64 / denominator, j as f64 / denominator];
+            if !points.contains(&p) {
+                points.push(p);
+            }
+        }
+        let input = MeshInput::from_points(points);
+        for switches in ["DzQ", "cDzQ", "q25DzQ"] {
+            let context = format!("case {case}, \"{switches}\", points {:?}", input.points);
+            let (out, warnings) = engine(switches, &input, &Hooks::default())
+                .unwrap_or_else(|e| panic!("{context}: {e}"));
+            assert!(warnings.is_empty(), "{context}: {warnings:?}");
+            let mesh = MeshView::of(&out).unwrap_or_else(|e| panic!("{context}: {e}"));
+            check_conforming_delaunay(&mesh).unwrap_or_else(|e| panic!("{context}: {e}"));
+        }
+    }
+}

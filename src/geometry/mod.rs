@@ -419,6 +419,69 @@ pub fn circumcenter(org: Point, dest: Point, apex: Point) -> (Point, f64, f64) {
     ([org[0] + dx, org[1] + dy], xi, eta)
 }
 
+/// The sign of `(u − w)·(v − w)`, exactly: negative where `w` lies strictly inside the circle
+/// with diameter `u`–`v` (the angle at `w` is obtuse), zero on it, positive outside. Conforming
+/// Delaunay (`D`) decides encroachment by it: a vertex a few units in the last place inside a
+/// hull subsegment's diametral circle puts a Voronoi vertex outside the triangulation, so the
+/// decision cannot be left to rounding. A floating-point filter first (each difference, product
+/// and the sum round once: 4ε of the terms' magnitudes, doubled for safety); else the exact
+/// sum of the eight error-free products of the differences' two-term expansions.
+pub fn diametral_dot(u: Point, v: Point, w: Point) -> f64 {
+    let (ax, ay, bx, by) = (u[0] - w[0], u[1] - w[1], v[0] - w[0], v[1] - w[1]);
+    let (px, py) = (ax * bx, ay * by);
+    let dot = px + py;
+    if dot.abs() > 8.0 * f64::EPSILON * (px.abs() + py.abs()) {
+        return dot;
+    }
+    let two_diff = |a: f64, b: f64| {
+        let x = a - b;
+        let bv = a - x;
+        (x, (a - (x + bv)) + (bv - b))
+    };
+    let (ax, ay) = (two_diff(u[0], w[0]), two_diff(u[1], w[1]));
+    let (bx, by) = (two_diff(v[0], w[0]), two_diff(v[1], w[1]));
+    // Exactly a·b + c·d... as the sum of 16 doubles (each product split by an fma).
+    let mut terms = [0.0; 16];
+    let mut n = 0;
+    for (a, b) in [(ax, bx), (ay, by)] {
+        for x in [a.0, a.1] {
+            for y in [b.0, b.1] {
+                let p = x * y;
+                terms[n] = p;
+                terms[n + 1] = x.mul_add(y, -p);
+                n += 2;
+            }
+        }
+    }
+    exact_sum_sign(&terms)
+}
+
+/// The exact sum's sign of `terms` (as a double of that sign): grown term by term into a
+/// nonoverlapping expansion (Shewchuk 1997, Grow-Expansion), whose largest nonzero component
+/// carries the sign.
+fn exact_sum_sign(terms: &[f64]) -> f64 {
+    let mut expansion = [0.0f64; 17];
+    let mut len = 0;
+    for &t in terms {
+        let mut q = t;
+        for e in expansion.iter_mut().take(len) {
+            let sum = q + *e;
+            let bv = sum - q;
+            let low = (q - (sum - bv)) + (*e - bv);
+            *e = low;
+            q = sum;
+        }
+        expansion[len] = q;
+        len += 1;
+    }
+    expansion[..len]
+        .iter()
+        .rev()
+        .copied()
+        .find(|&c| c != 0.0)
+        .unwrap_or(0.0)
+}
+
 /// The squared sine of the smallest angle of triangle (a, b, c), which grows with that angle
 /// (at most 60°): twice the area over the product of the two longest edges is the sine of the
 /// angle between them, the one opposite the shortest edge.
@@ -437,6 +500,20 @@ pub fn min_angle_sin2([a, b, c]: [Point; 3]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn diametral_dot_is_exact_where_rounding_says_on_the_circle() {
+        // (0.6, 0.3) lies on the circle with diameter (0.375, 0)–(1, 0) in the reals; the doubles
+        // 0.6 and 0.3 (just below) put it a few 10^-18 inside: rounding says 0.
+        let (u, v, w) = ([0.375, 0.0], [1.0, 0.0], [0.6, 0.3]);
+        let rounded = (u[0] - w[0]) * (v[0] - w[0]) + (u[1] - w[1]) * (v[1] - w[1]);
+        assert!(rounded >= 0.0, "the doubles round to {rounded}");
+        assert!(diametral_dot(u, v, w) < 0.0);
+        assert!(diametral_dot(u, v, [0.6875, 0.3125]) == 0.0);
+        assert!(diametral_dot(u, v, [0.6875, 0.3125f64.next_up()]) > 0.0);
+        assert!(diametral_dot(u, v, [0.6875, 0.3125f64.next_down()]) < 0.0);
+        assert!(diametral_dot(u, v, [2.0, 0.0]) > 0.0);
+    }
 
     #[test]
     fn orientation_and_incircle_signs() {

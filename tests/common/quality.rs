@@ -17,6 +17,7 @@ use std::os::raw::{c_char, c_int, c_void};
 
 use triangle_rs::data::{Hooks, Input, Output};
 use triangle_rs::ffi::TriunsuitableUserFn;
+use triangle_rs::geometry::diametral_dot;
 use triangle_rs::options::{Options, SwitchSource};
 
 use super::call::{ours, run_call, Counts, MeshInput, Triangulation};
@@ -435,10 +436,24 @@ pub fn area_bound(
 }
 
 /// Truly Delaunay (`D`): every interior edge, segments included, is locally Delaunay by exact
-/// `incircle`; and every triangle's circumcentre lies in the meshed domain (up to rounding of
-/// the circumcentre: within `1e-9` of the domain's extent).
+/// `incircle`; no boundary edge has the apex of its triangle strictly inside its diametral
+/// circle (exactly: else that triangle's circumcentre, a Voronoi vertex, lies outside); and
+/// every triangle's circumcentre lies in the meshed domain (up to rounding of the circumcentre:
+/// within `1e-9` of the domain's extent).
 pub fn check_conforming_delaunay(mesh: &MeshView<'_>) -> Result<(), String> {
     check_locally_delaunay(mesh, true)?;
+    for (&(a, b), &(t, k)) in &mesh.edges {
+        if mesh.edges.contains_key(&(b, a)) {
+            continue;
+        }
+        let apex = mesh.triangles[t][k];
+        let [pa, pb, pw] = [a, b, apex].map(|v| mesh.points[v]);
+        if diametral_dot(pa, pb, pw) < 0.0 {
+            return Err(format!(
+                "boundary edge {pa:?}-{pb:?} has vertex {pw:?} strictly inside its diametral circle"
+            ));
+        }
+    }
     let locator = Locator::new(mesh);
     for c in &mesh.triangles {
         let [a, b, d] = c.map(|v| mesh.points[v]);

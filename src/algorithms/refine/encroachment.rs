@@ -5,7 +5,7 @@
 
 use super::{inside, VertexKind};
 use crate::algorithms::delaunay::Location;
-use crate::geometry::{Point, Predicates};
+use crate::geometry::{diametral_dot, Point, Predicates};
 use crate::mesh::{EdgeId, Mesh, TriangleId, VertexId, GHOST};
 
 /// The encroachment test for an angle bound θ.
@@ -40,7 +40,8 @@ impl Encroachment {
                 dot < 0.0
                     && dot * dot >= cos2 * (a[0] * a[0] + a[1] * a[1]) * (b[0] * b[0] + b[1] * b[1])
             }
-            None => dot < 0.0,
+            // Exactly: `D` promises every Voronoi vertex inside the triangulation.
+            None => diametral_dot(pu, pv, w) < 0.0,
         }
     }
 
