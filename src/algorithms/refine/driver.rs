@@ -2,6 +2,7 @@
 //! angle with its budgets, and the report with its warnings (polling: [`super::polling`]).
 
 use super::attributes::Attributes;
+use super::encroachment::NEGLIGIBLE_SLIVER;
 use super::polling::Polling;
 use super::queue::QueueOrder;
 use super::refinement::{Aside, Refinement, RunEnd, Settings};
@@ -55,7 +56,11 @@ pub fn refine<P: Predicates>(
     attribute_count: usize,
 ) -> Report {
     let mesh = cdt.mesh();
-    let (floor2, extent2) = resolution(mesh);
+    let Resolution {
+        snap2,
+        floor2,
+        extent2,
+    } = resolution(mesh);
     // Without the user's own test or budget: a run that makes far more vertices than the input
     // and the area bounds account for is stopped (an input a hair's breadth wide, such as nearly
     // collinear points with `c`, needs about length/width triangles: billions).
@@ -65,13 +70,14 @@ pub fn refine<P: Predicates>(
         expected.max(RUNAWAY_MINIMUM)
     });
     let kinds = vec![VertexKind::Input; mesh.points().len()];
-    cdt.snap_vertices_onto_segments(floor2);
+    cdt.snap_vertices_onto_segments(snap2);
     domain.merge_equal_regions(cdt.mesh_mut());
     let settings = Settings {
         domain,
         quality,
         conforming,
         floor2,
+        negligible_sliver: NEGLIGIBLE_SLIVER * doubled_domain_area::<P>(cdt.mesh()),
         extent2,
     };
     let refinement = Refinement::new(
@@ -136,10 +142,15 @@ pub fn refine<P: Predicates>(
             steiner_points: tally.steiner_points,
         });
     }
-    if tally.skipped > 0 {
-        warnings.push(Warning::PrecisionExhausted {
-            unsplit: tally.skipped,
-        });
+    // Only what the finished mesh still lacks is reported: refused splits that later ones made
+    // unnecessary are not a shortfall.
+    let unsplit = if tally.skipped > 0 {
+        driver.refinement.unmet_bounds()
+    } else {
+        0
+    };
+    if unsplit > 0 {
+        warnings.push(Warning::PrecisionExhausted { unsplit });
     }
     if tally.kept_whole > 0 {
         warnings.push(Warning::SegmentsKeptWhole {
@@ -494,10 +505,18 @@ fn smallest_angle_sin2(mesh: &Mesh) -> f64 {
     worst_triangle(mesh).map_or(1.0, |(_, sin2)| sin2)
 }
 
-/// The resolution refinement works at, from the extent of the vertices: the squared floor
-/// below which no edge is made (2⁻⁴⁰ of the extent, far above the resolution of doubles there)
-/// and the squared extent.
-fn resolution(mesh: &Mesh) -> (f64, f64) {
+/// The resolutions refinement works at, from the vertices: the squared snapping distance (a
+/// vertex this close to an interior subsegment becomes a vertex of it: 2⁻⁴⁰ of the extent,
+/// where rounding makes one line of a segment and a vertex beside it), the squared floor below
+/// which no edge is made, and the squared extent.
+///
+/// The floor is 2⁻⁵⁰ of the largest coordinate magnitude: four to eight units in the last place
+/// there, the finest spacing at which a rounded split point still lands where it was meant to
+/// (between the vertices it was computed from). Triangle refines as fine as the doubles allow,
+/// so a floor relative to the extent (2⁻⁴⁰ of it, some four thousand units in the last place)
+/// left the triangles around a vertex pair 10⁻¹¹ of the domain apart unsplit where Triangle
+/// meets θ.
+fn resolution(mesh: &Mesh) -> Resolution {
     let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
     for p in mesh.points() {
         for i in 0..2 {
@@ -505,13 +524,41 @@ fn resolution(mesh: &Mesh) -> (f64, f64) {
             hi[i] = hi[i].max(p[i]);
         }
     }
+    let magnitude = lo[0]
+        .abs()
+        .max(hi[0].abs())
+        .max(lo[1].abs())
+        .max(hi[1].abs());
     let extent = (hi[0] - lo[0])
         .abs()
         .max((hi[1] - lo[1]).abs())
-        .max(lo[0].abs().max(hi[0].abs()) * 1e-3)
+        .max(magnitude * 1e-3)
         .max(f64::MIN_POSITIVE);
-    let floor = extent * 2f64.powi(-40);
-    (floor * floor, extent * extent)
+    let snap = extent * 2f64.powi(-40);
+    let floor = (magnitude * 2f64.powi(-52)).max(f64::MIN_POSITIVE);
+    Resolution {
+        snap2: snap * snap,
+        floor2: floor * floor,
+        extent2: extent * extent,
+    }
+}
+
+/// What [`resolution`] gives (each squared).
+struct Resolution {
+    snap2: f64,
+    floor2: f64,
+    extent2: f64,
+}
+
+/// Twice the area of the domain's triangles.
+fn doubled_domain_area<P: Predicates>(mesh: &Mesh) -> f64 {
+    mesh.triangles()
+        .filter(|&t| inside(mesh, t))
+        .map(|t| {
+            let [a, b, c] = mesh.triangle(t).map(|v| mesh.point(v));
+            P::orient2d(a, b, c)
+        })
+        .sum()
 }
 
 fn inside_triangle_count(mesh: &Mesh) -> u64 {

@@ -191,6 +191,13 @@ pub(super) fn split_parameter(
 /// (On the caller's grid in a translated frame, see [`GRID_SLIVER`].)
 pub(super) const BOUNDARY_SLIVER: f64 = 1.0 / (1u64 << 20) as f64;
 
+/// A sliver of at most this fraction of the whole domain's area is accepted on any boundary
+/// subsegment ([`splits_faithfully`]): rounding moves a point by some 10^-16 of the
+/// coordinates, so only a domain less than about 10^-4 of its extent wide (10^12 roundings)
+/// sees such slivers add up to a visible part of its area (and a domain thinner than rounding
+/// refuses them by [`BOUNDARY_SLIVER`] as before).
+pub(super) const NEGLIGIBLE_SLIVER: f64 = 1.0 / (1u64 << 40) as f64;
+
 /// [`BOUNDARY_SLIVER`] on the caller's grid in a translated frame (`Refinement::largest_sliver`):
 /// the rounding there is the caller's own, half a unit in the last place of coordinates whose
 /// features may be only thousands of units long, as Triangle's plain arithmetic rounds. A
@@ -206,18 +213,23 @@ pub(super) const GRID_SLIVER: f64 = 1.0;
 ///   orientation: `p` lies strictly inside the union of the two triangles beside it, so it is on
 ///   no existing vertex and no other edge);
 /// - on a boundary subsegment (the domain on one side only), the sliver between `p` and the
-///   subsegment is at most `largest_sliver` of the domain triangle beside it, on whichever
-///   side `p` was rounded to. Rounded outward, `p` would widen the domain; rounded inward, it
-///   would narrow it; in a domain thinner than the rounding of its coordinates either changes
-///   its area by a large fraction (exactly on the line, `p` changes nothing).
+///   subsegment (twice its area) is at most `negligible`, or at most `largest_sliver` of the
+///   domain triangle beside it, on whichever side `p` was rounded to. Rounded outward, `p`
+///   would widen the domain; rounded inward, it would narrow it; in a domain thinner than the
+///   rounding of its coordinates either changes its area by a large fraction (exactly on the
+///   line, `p` changes nothing). `negligible` is [`NEGLIGIBLE_SLIVER`] of the whole domain: a
+///   triangle beside the boundary may be as thin as a few units in the last place where two
+///   vertices are that close (Triangle splits there, and so must we to meet θ), while the
+///   domain, unless it is itself that thin, does not notice.
 ///
 /// The domain's area thus changes by at most that fraction of the triangles split at its
-/// boundary.
+/// boundary, or of itself.
 pub(super) fn splits_faithfully<P: Predicates>(
     mesh: &Mesh,
     e: EdgeId,
     p: Point,
     largest_sliver: f64,
+    negligible: f64,
 ) -> bool {
     let sides = [e, mesh.twin(e)];
     let in_domain = sides.map(|h| mesh.apex(h) != GHOST && inside(mesh, h.triangle()));
@@ -236,7 +248,9 @@ pub(super) fn splits_faithfully<P: Predicates>(
     let h = if in_domain[0] { sides[0] } else { sides[1] };
     let (a, b) = (mesh.point(mesh.origin(h)), mesh.point(mesh.dest(h)));
     let sliver = P::orient2d(a, b, p).abs();
-    sliver == 0.0 || sliver <= largest_sliver * P::orient2d(a, b, mesh.point(mesh.apex(h)))
+    sliver == 0.0
+        || sliver <= negligible
+        || sliver <= largest_sliver * P::orient2d(a, b, mesh.point(mesh.apex(h)))
 }
 
 /// For an input vertex `x` where two segments meet at less than 90°: the cosine of the smallest

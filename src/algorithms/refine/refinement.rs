@@ -8,6 +8,8 @@ use std::collections::{HashSet, VecDeque};
 
 use super::attributes::Attributes;
 use super::deletion::DiskWalk;
+#[cfg(doc)]
+use super::encroachment::{splits_faithfully, NEGLIGIBLE_SLIVER};
 use super::encroachment::{Cavity, Encroachment, BOUNDARY_SLIVER, GRID_SLIVER};
 use super::polling::Polling;
 use super::queue::{BadQueue, BadTriangle, QueueOrder};
@@ -30,8 +32,12 @@ pub(super) struct Settings<'r, 'q> {
     pub(super) quality: &'r Quality<'q>,
     /// `D`: encroachment by diametral circles, so that the result is truly Delaunay.
     pub(super) conforming: bool,
-    /// No edge is made shorter than this (squared): far above the resolution of doubles here.
+    /// No edge is made shorter than this (squared): a few units in the last place of the largest
+    /// coordinate.
     pub(super) floor2: f64,
+    /// A rounded split point may always cut this much (twice the area) off the domain or add it
+    /// ([`splits_faithfully`]): [`NEGLIGIBLE_SLIVER`] of the domain.
+    pub(super) negligible_sliver: f64,
     /// The domain's extent, squared (the scale of the bad-triangle queue).
     pub(super) extent2: f64,
 }
@@ -329,6 +335,35 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
     }
 
     /// Queues triangle `t` if it is bad: skinny, too big, or so by the user's test.
+    /// What the finished mesh leaves of the bounds: its bad triangles (skinny, too big or
+    /// unsuitable, as [`Self::check_triangle`] judges them) and, with `D`, its encroached
+    /// subsegments. A split refused where the doubles could not hold it need not leave any
+    /// (another split may have mended the triangle since): the warning counts these.
+    pub(super) fn unmet_bounds(&self) -> u64 {
+        let mesh = self.mesh();
+        let bad = mesh
+            .triangles()
+            .filter(|&t| inside(mesh, t))
+            .filter(|&t| {
+                let corners = mesh.triangle(t);
+                let points = corners.map(|v| mesh.point(v));
+                self.angle
+                    .skinny(mesh, &self.kinds, &self.cdt.ends, corners, points)
+                    .is_some()
+                    || self.too_big(t, points)
+            })
+            .count() as u64;
+        let encroached = if self.settings.conforming {
+            mesh.edges()
+                .filter(|&e| mesh.is_segment(e) && e < mesh.twin(e))
+                .filter(|&e| self.encroachment.apex_encroaches(mesh, e))
+                .count() as u64
+        } else {
+            0
+        };
+        bad + encroached
+    }
+
     fn check_triangle(&mut self, t: TriangleId) {
         let mesh = self.mesh();
         let corners = mesh.triangle(t);

@@ -88,8 +88,15 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         let floor2 = self.settings.floor2;
         let too_short = |q: Point, r: Point| (q[0] - r[0]).powi(2) + (q[1] - r[1]).powi(2) < floor2;
         let p = self.placed(exact);
-        let faithful =
-            |this: &Self, e| splits_faithfully::<P>(this.mesh(), e, p, this.largest_sliver());
+        let faithful = |this: &Self, e| {
+            splits_faithfully::<P>(
+                this.mesh(),
+                e,
+                p,
+                this.largest_sliver(),
+                this.settings.negligible_sliver,
+            )
+        };
         let mut splits = !too_short(p, pu) && !too_short(p, pv) && faithful(self, e);
         let mut e = e;
         // Chew's rule: the free vertices in the diametral circle go first (the triangles beside
