@@ -66,7 +66,8 @@ typedef void (*triangulate_progress_fn)(int phase, int64_t done, int64_t estimat
 
 /**
  * Triangulates, meshes or refines as Triangle 1.6 does. Returns 0 on success; on failure a
- * non-zero code, with the message available from `triangulate_last_error`.
+ * non-zero code, with the message available from `triangulate_last_error`. The `u` test is the
+ * callback set with `triunsuitable_callback`, or with none set Triangle's built-in test.
  *
  * # Safety
  * `switches` is a NUL-terminated string; `in`, `out` and (with `v`) `vorout` point to valid
@@ -117,7 +118,7 @@ const char *triangulate_last_warning(void);
  * Reentrant triangulation: the `u` test is `unsuitable` (called with `user_data` last) for this
  * call only, and refinement stops early with a valid mesh once `*cancel` becomes non-zero (set it
  * from another thread with an atomic or volatile store; `cancel` may be NULL). No global state.
- * `unsuitable` may be NULL.
+ * `unsuitable` may be NULL: `u` then applies Triangle's built-in test.
  */
 int triangulate_reentrant(const char *switches,
                           struct triangulateio *in,
@@ -144,7 +145,8 @@ int triangulate_progress(const char *switches,
                          triangulate_progress_fn progress);
 
 /**
- * Sets the process-wide `u` callback (Triangulate.jl's `triunsuitable!`). NULL clears it.
+ * Sets the process-wide `u` callback (Triangulate.jl's `triunsuitable!`). NULL clears it: `u`
+ * then applies Triangle's built-in test.
  * Prefer `triangulate_reentrant`, which takes the callback per call.
  */
 void triunsuitable_callback(triunsuitable_fn f);

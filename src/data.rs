@@ -146,6 +146,8 @@ pub type ProgressFn<'a> = dyn Fn(Progress) + Sync + 'a;
 /// Per-call hooks: no global state.
 #[derive(Clone, Copy, Default)]
 pub struct Hooks<'a> {
+    /// The test of `u`; `None`: Triangle's built-in test
+    /// ([`crate::algorithms::refine::builtin_unsuitable`]).
     pub unsuitable: Option<&'a UnsuitableFn<'a>>,
     /// Polled during long work; `true` stops refinement early with a valid mesh.
     pub cancel: Option<&'a (dyn Fn() -> bool + Sync + 'a)>,

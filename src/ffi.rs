@@ -162,7 +162,8 @@ fn global_callback() -> Option<TriunsuitableFn> {
 }
 
 /// Triangulates, meshes or refines as Triangle 1.6 does. Returns 0 on success; on failure a
-/// non-zero code, with the message available from `triangulate_last_error`.
+/// non-zero code, with the message available from `triangulate_last_error`. The `u` test is the
+/// callback set with `triunsuitable_callback`, or with none set Triangle's built-in test.
 ///
 /// # Safety
 /// `switches` is a NUL-terminated string; `in`, `out` and (with `v`) `vorout` point to valid
@@ -216,6 +217,7 @@ pub unsafe extern "C" fn triangulate_catch_exit(
 /// Reentrant triangulation: the `u` test is `unsuitable` (called with `user_data` last) for this
 /// call only, and refinement stops early with a valid mesh once `*cancel` becomes non-zero (set it
 /// from another thread with an atomic or volatile store; `cancel` may be NULL). No global state.
+/// With `unsuitable` NULL, `u` applies Triangle's built-in test.
 ///
 /// # Safety
 /// As [`triangulate`]; `cancel` is NULL or points to an aligned `int` that outlives the call;
@@ -302,7 +304,8 @@ pub unsafe extern "C" fn trifree(memptr: *mut c_void) {
     unsafe { libc::free(memptr) }
 }
 
-/// Sets the process-wide `u` callback (Triangulate.jl's `triunsuitable!`). NULL clears it.
+/// Sets the process-wide `u` callback (Triangulate.jl's `triunsuitable!`). NULL clears it: `u`
+/// then applies Triangle's built-in test.
 /// Prefer `triangulate_reentrant`, which takes the callback per call.
 #[no_mangle]
 pub extern "C" fn triunsuitable_callback(f: Option<TriunsuitableFn>) {

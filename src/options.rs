@@ -41,7 +41,7 @@ pub struct Options {
     pub max_area: Option<f64>,
     /// `a` without a number: regional (`p`) or per-triangle (`r`) area constraints.
     pub variable_area: bool,
-    /// `u`: the user's `triunsuitable` test.
+    /// `u`: the user's `triunsuitable` test (Triangle's built-in one when none is registered).
     pub user_test: bool,
     /// `A`: regional attributes appended to the triangle attributes.
     pub region_attributes: bool,

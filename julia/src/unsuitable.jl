@@ -20,7 +20,8 @@ const DEFAULT_TEST_LOCK = ReentrantLock()
 Sets the test that Triangle's `u` switch applies to every triangle during refinement:
 `unsuitable(x1, y1, x2, y2, x3, y3, area)` receives the triangle's corners (counterclockwise)
 and its area and returns `true` if the triangle must be split. It is called only after the
-`a` area tests have passed. `nothing` removes the test.
+`a` area tests have passed. `nothing` removes the test: `u` then applies Triangle's built-in
+test, as the C library does with no test (see the README of triangle-rs).
 
 Unlike Triangulate.jl's, the setting is safe across tasks and threads: it applies to the
 calling task, and it is also the default for tasks that never call `triunsuitable!`. Each

@@ -173,3 +173,61 @@ def test_output_keys_match_the_pypi_package(name, opts, pypi):
             assert ours[key].tolist() == theirs[key].tolist() == np.asarray(tri[key], dtype=float).tolist()
     for key, array in ours.items():
         assert array.ndim == 2 and array.dtype.kind == theirs[key].dtype.kind, key
+
+
+# --- switch u without a callback: Triangle's built-in test ---------------------------------------
+
+
+def _builtin_unsuitable(origin, dest, apex):
+    """Triangle's built-in ``u`` test as observed on the PyPI package: the longest edge, squared,
+    above 0.02 + 0.05 (x^2 + y^2) of the origin (the first vertex the test is given)."""
+    longest = max(
+        (p[0] - q[0]) ** 2 + (p[1] - q[1]) ** 2 for p, q in ((origin, dest), (dest, apex), (apex, origin))
+    )
+    return longest > 0.05 * (origin[0] ** 2 + origin[1] ** 2) + 0.02
+
+
+def _passes_from_some_corner(out):
+    """Every triangle passes the built-in test with one of its corners as origin (which corner
+    Triangle gives as origin is its own affair)."""
+    points = out["vertices"]
+    for a, b, c in points[out["triangles"]]:
+        assert not (_builtin_unsuitable(a, b, c) and _builtin_unsuitable(b, c, a) and _builtin_unsuitable(c, a, b))
+
+
+@pytest.mark.parametrize("shift", [(0.0, 0.0), (-1.0, -1.0)])
+def test_u_without_a_callback_applies_the_built_in_test(shift, pypi):
+    vertices = np.array(SQUARE, dtype=float) * (1 if shift == (0.0, 0.0) else 2) + shift
+    tri = {"vertices": vertices, "segments": [[0, 1], [1, 2], [2, 3], [3, 0]]}
+    domain = 1.0 if shift == (0.0, 0.0) else 4.0
+    theirs = pypi.triangulate(tri, "pu")
+    ours = triangle.triangulate(tri, "pu")
+    # The unit square: Triangle 117 triangles, ours 137; [-1, 1]^2: 492 and 566 (the order of the
+    # splits, and which corner a triangle's origin is, differ).
+    assert len(theirs["triangles"]) in (117, 492)
+    assert abs(len(ours["triangles"]) - len(theirs["triangles"])) <= 0.2 * len(theirs["triangles"])
+    for out in (theirs, ours):
+        _passes_from_some_corner(out)
+        areas = signed_areas(out["vertices"], out["triangles"])
+        assert np.all(areas > 0) and np.isclose(areas.sum(), domain)
+    # The Triangulate.jl-style API, without a callback, gives the same mesh.
+    tio = triangle.TriangulateIO(pointlist=vertices, segmentlist=np.array(tri["segments"], dtype=np.int32))
+    out, _ = triangle.triangulate("pQu", tio)
+    assert out.numberoftriangles == len(ours["triangles"])
+    # A callback replaces the built-in test.
+    assert len(triangle.triangulate(tri, "pu", unsuitable=lambda *_: False)["triangles"]) == 2
+
+
+def test_the_built_in_threshold_matches_the_pypi_package_bit_for_bit(pypi):
+    # One triangle given with `r`: its first corner is the origin the test sees, in both.
+    for ox, oy in [(0.0, 0.0), (1.0, 0.3), (-2.7, 1.1), (13.1, 7.7)]:
+        threshold = np.sqrt(0.05 * (ox * ox + oy * oy) + 0.02)
+        for ulps in range(-4, 5):
+            h = threshold
+            for _ in range(abs(ulps)):
+                h = np.nextafter(h, np.inf if ulps > 0 else 0.0)
+            points = [[ox, oy], [ox, oy + h], [ox - 0.05 * h, oy + 0.5 * h]]
+            expected = _builtin_unsuitable(*points)
+            tri = {"vertices": points, "triangles": [[0, 1, 2]]}
+            assert (len(pypi.triangulate(tri, "ru")["triangles"]) > 1) == expected, (points, ulps)
+            assert (len(triangle.triangulate(tri, "ru")["triangles"]) > 1) == expected, (points, ulps)

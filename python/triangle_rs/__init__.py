@@ -101,7 +101,8 @@ def triangulate(
     * ``triangulate(tri: dict, opts: str = '') -> dict``: the PyPI ``triangle`` package's
       (see :func:`triangle_rs.compat.triangulate`).
 
-    ``unsuitable(x1, y1, x2, y2, x3, y3, area) -> bool`` is the per-call test of switch ``u``.
+    ``unsuitable(x1, y1, x2, y2, x3, y3, area) -> bool`` is the per-call test of switch ``u``
+    (without it, ``u`` applies Triangle's built-in test, as the PyPI package does).
     ``progress=True`` shows a progress bar (tqdm when installed); a callable
     ``progress(phase, done, estimate)`` is told of the call's progress instead.
     """

@@ -67,8 +67,9 @@ def triangulate(
     ``segment_markers``, ``holes`` (h, 2), ``regions`` (r, 4: x, y, attribute, max area),
     ``triangles`` and ``triangle_attributes``/``triangle_max_area`` (for ``r``). The result has the
     same keys plus ``neighbors`` (``n``) and ``edges``/``edge_markers`` (``e``).
-    ``unsuitable`` (an extension) is the per-call test of switch ``u``; ``progress=True`` (an
-    extension) shows a progress bar, and a callable ``progress(phase, done, estimate)`` is told.
+    ``unsuitable`` (an extension) is the per-call test of switch ``u`` (without it, ``u`` applies
+    Triangle's built-in test, as the PyPI package does); ``progress=True`` (an extension) shows a
+    progress bar, and a callable ``progress(phase, done, estimate)`` is told.
 
     >>> out = triangulate({'vertices': [[0, 0], [0, 1], [1, 1], [1, 0]]})
     >>> sorted(out), out['triangles'].shape, out['vertex_markers'].shape

@@ -65,7 +65,8 @@ def triangulate(
 
     ``unsuitable(x1, y1, x2, y2, x3, y3, area) -> bool`` is the user test of switch ``u``: it is
     called for this call only (no global state), from the thread running the call. An exception
-    it raises stops the refinement and is re-raised here.
+    it raises stops the refinement and is re-raised here. Without it, ``u`` applies Triangle's
+    built-in test (see the README).
 
     Raises :class:`TriangulateError` with the library's message when the input or the switches
     are refused. The GIL is released while the library works. Ctrl-C (KeyboardInterrupt), or any

@@ -26,7 +26,7 @@ usage: triangle-rs [-prq__a__uAcDjevngBPNEIOXzo_YS__iFlsCQVh] input_file [--svg 
     -r  Refine a mesh read from .node and .ele files.
     -q  Quality mesh: no angle below 20 degrees (or the number after q).
     -a  Maximum triangle area: the number after a, or per region / per triangle.
-    -u  Refine triangles that a user-defined test rejects.
+    -u  Refine triangles that Triangle's built-in test rejects (see -h).
     -A  Add a triangle attribute telling which region each triangle is in.
     -c  Enclose the convex hull with segments.
     -D  Conforming Delaunay: every triangle truly Delaunay.
@@ -93,7 +93,11 @@ SWITCHES
         (q32.5). Up to about 28.6 degrees this always terminates; beyond about 34 it may not.
     -a  Limit triangle areas: a0.1 is a limit for all triangles; a alone uses the limits of the
         .poly regions (with -p) or of the .area file (with -r). Both forms can be combined.
-    -u  Split every triangle that the user-defined test finds unsuitable.
+    -u  Split every triangle that the user-defined test finds unsuitable. The program has no
+        user test: it applies Triangle's built-in one, which finds a triangle unsuitable when
+        its longest edge, squared, exceeds 0.02 + 0.05 (x^2 + y^2), (x, y) being the first
+        vertex the test is given: edges of about 0.14 near the origin, growing with the
+        distance from it.
     -A  Give each triangle an extra attribute: the attribute of the region it lies in (0 if
         none). Needs -p.
     -c  Add the convex hull of the vertices as segments, so that nothing outside the segments is

@@ -5,7 +5,7 @@ use crate::algorithms::constrain::Constrainer;
 use crate::algorithms::delaunay::{self, merge, order, InInsertionOrder, Inserter, Triangulation};
 use crate::algorithms::domain::{carve, Domain};
 use crate::algorithms::reconstruct::reconstruct;
-use crate::algorithms::refine::{refine, CallerGrid, Quality};
+use crate::algorithms::refine::{builtin_unsuitable, refine, CallerGrid, Quality};
 use crate::assemble::{self, LaterCopy};
 use crate::data::{Hooks, Input, Output, Phase, UnsuitableFn, VoronoiOutput};
 use crate::error::Error;
@@ -200,7 +200,14 @@ fn triangulate_in_frame(
     let points = std::mem::take(&mut scaled.points);
     let options = &scaled.options;
     let input = scaled.view(input);
-    let user_test = hooks.unsuitable.map(|test| scaling.unscaled_test(test));
+    // `u` with no test registered: Triangle's built-in one (see `builtin_unsuitable`), which
+    // like a registered test sees the caller's coordinates.
+    let registered = hooks.unsuitable.or_else(|| {
+        options
+            .user_test
+            .then_some(&builtin_unsuitable as &UnsuitableFn<'_>)
+    });
+    let user_test = registered.map(|test| scaling.unscaled_test(test));
     let hooks = Hooks {
         unsuitable: user_test.as_ref().map(|t| t as &UnsuitableFn<'_>),
         ..*hooks

@@ -26,6 +26,7 @@ use crate::mesh::{Mesh, TriangleId, VertexId, OUTSIDE};
 
 // The parts, each a type with its own state:
 mod attributes; // `Attributes`: the interpolated attributes of new vertices
+mod builtin_test; // `builtin_unsuitable`: Triangle's `u` test when the caller registers none
 mod deletion; // `DiskWalk`: the free vertices deleted before a subsegment is split (Chew)
 mod driver; // `refine`: strategy above the guaranteed angle, budgets, runaway limit, report
 mod encroachment; // `Encroachment`, `Cavity`: encroached subsegments, where subsegments are split
@@ -39,6 +40,7 @@ mod split_point; // `AngleBound`: skinny triangles, the small-angle exemption, s
 mod tests;
 mod walk; // the straight walk from a bad triangle toward its split point
 
+pub use builtin_test::builtin_unsuitable;
 pub use driver::refine;
 pub use report::{Report, Warning};
 
@@ -53,7 +55,8 @@ pub struct Quality<'a> {
     pub max_area: Option<f64>,
     /// Regional / per-triangle maximum areas (`a`), from the domain's tags.
     pub variable_area: bool,
-    /// The user's test (`u`).
+    /// The user's test (`u`), or the built-in one ([`builtin_unsuitable`]) when none is
+    /// registered.
     pub user_test: Option<&'a UnsuitableFn<'a>>,
     /// `Y` (1): no Steiner points on boundary segments; `YY` (2): on any segment.
     pub no_steiner_on_segments: u8,
