@@ -311,6 +311,48 @@ fn malformed_inputs_give_clean_errors() {
     expect_clean_error(&[("a.node", node)], &["-a0", "a.node"], &["area"]);
 }
 
+/// Files saved by editors that write a UTF-8 byte-order mark (EF BB BF) first read as without
+/// it, whatever their kind, as in Triangle.
+#[test]
+fn inputs_with_a_byte_order_mark_read_as_without() {
+    let node = "4 2 0 1\n1 0 0 1\n2 1 0 1\n3 1 1 1\n4 0 1 1\n";
+    let poly = "4 2 0 1\n1 0 0 1\n2 1 0 1\n3 1 1 1\n4 0 1 1\n\
+                4 1\n1 1 2 1\n2 2 3 1\n3 3 4 1\n4 4 1 1\n0\n1\n1 0.5 0.5 2 0.1\n";
+    let segments_only = "0 2 0 1\n4 1\n1 1 2 1\n2 2 3 1\n3 3 4 1\n4 4 1 1\n0\n";
+    let ele = "2 3 0\n1 4 1 2\n2 2 3 4\n";
+    let area = "2\n1 0.1\n2 -1\n";
+    type Case<'a> = (&'a [&'a str], &'a [(&'a str, &'a str)]);
+    let cases: [Case; 4] = [
+        (&["-Qe", "a.node"], &[("a.node", node)]),
+        (&["-QpqA", "p.poly"], &[("p.poly", poly)]),
+        (
+            &["-Qp", "c.poly"],
+            &[("c.poly", segments_only), ("c.node", node)],
+        ),
+        (
+            &["-Qra", "m"],
+            &[("m.node", node), ("m.ele", ele), ("m.area", area)],
+        ),
+    ];
+    for (args, inputs) in cases {
+        let (plain, marked) = (TempDir::new("bom-plain"), TempDir::new("bom-marked"));
+        for (name, text) in inputs {
+            plain.write(name, text);
+            marked.write(name, &format!("\u{feff}{text}"));
+        }
+        let expected = run(&ours(), plain.path(), args);
+        assert!(expected.ok(), "{args:?}: {}", expected.stderr);
+        let r = run(&ours(), marked.path(), args);
+        assert!(r.ok(), "{args:?} with byte-order marks: {}", r.stderr);
+        assert_eq!(marked.files(), plain.files(), "{args:?}");
+        for name in plain.files() {
+            if !inputs.iter().any(|(input, _)| *input == name) {
+                assert_eq!(marked.read(&name), plain.read(&name), "{args:?}: {name}");
+            }
+        }
+    }
+}
+
 #[test]
 fn a_failed_write_leaves_nothing_behind() {
     let dir = TempDir::new("writefail");

@@ -773,6 +773,34 @@ fn malformed_files_fail_in_both_programs() {
     }
 }
 
+/// A UTF-8 byte-order mark before the first line (as some editors save) is skipped by both.
+#[test]
+fn byte_order_marks_are_skipped_as_the_reference_skips_them() {
+    let marked = |text: &str| format!("\u{feff}{text}");
+    let node = marked(&data("dots.node"));
+    let Some(pair) = run_both("bom", &[("dots.node", &node)], &["-Qcen", "dots.node"]) else {
+        return;
+    };
+    pair.assert_both_succeeded("-Qcen dots.node with a byte-order mark");
+    compare_unique(
+        &pair,
+        "dots.1",
+        "-Qcen dots.node with a byte-order mark",
+        true,
+    );
+    let poly = marked(&data("pslg.poly"));
+    let Some(pair) = run_both("bom", &[("pslg.poly", &poly)], &["-Qpcen", "pslg.poly"]) else {
+        return;
+    };
+    pair.assert_both_succeeded("-Qpcen pslg.poly with a byte-order mark");
+    compare_unique(
+        &pair,
+        "pslg.1",
+        "-Qpcen pslg.poly with a byte-order mark",
+        true,
+    );
+}
+
 /// The counts of a histogram printed as nine rows of two `label: count` columns, the left
 /// column first, after the line containing `title`.
 fn histogram(stdout: &str, title: &str, rows: usize) -> Vec<usize> {

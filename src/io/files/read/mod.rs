@@ -2,6 +2,7 @@
 //! are testable without a file system and the error names the file it was given).
 //!
 //! The syntax follows Triangle's `-h` description and its reader's behaviour:
+//! - a UTF-8 byte-order mark at the start of a file (EF BB BF, as some editors save) is skipped;
 //! - `#` starts a comment that runs to the end of the line; lines without a number are skipped;
 //! - fields are separated by white space; a word that does not start like a number (a digit,
 //!   `.`, `+` or `-`) is skipped, so `1 0.5 0.5 boundary` reads three numbers;

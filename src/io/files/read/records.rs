@@ -28,10 +28,13 @@ pub(super) fn starts_like_a_number(word: &str) -> bool {
 }
 
 impl<'a> Lines<'a> {
+    /// The lines of `text`, without the byte-order mark an editor may write before them (UTF-8's
+    /// EF BB BF, U+FEFF): Triangle reads such a file as if it were not there. Every reader, and the
+    /// fast path of the vertex section, reads the text from here on.
     pub(super) fn new(file: &'a str, text: &'a str) -> Self {
         Lines {
             file,
-            text,
+            text: text.strip_prefix('\u{feff}').unwrap_or(text),
             position: 0,
             line_number: 0,
         }

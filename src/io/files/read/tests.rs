@@ -182,6 +182,70 @@ fn output_formats_read_back() {
     assert_eq!(off.edge_count, 3);
 }
 
+#[test]
+fn a_leading_byte_order_mark_is_skipped_in_every_file_kind() {
+    const BOM: &str = "\u{feff}";
+    let with_bom = |text: &str| format!("{BOM}{text}");
+    let node = "4 2 1 1\n1 0 0 0.5 1\n2 1 0 1 0\n3 1 1 2 0\n4 0 1 3 1\n";
+    assert_eq!(
+        read_node(&with_bom(node), "b.node"),
+        read_node(node, "b.node")
+    );
+    // A first line that is a comment, or that starts with blanks.
+    for start in ["# saved by an editor\n", "  "] {
+        let text = format!("{start}{node}");
+        assert_eq!(
+            read_node(&with_bom(&text), "b.node"),
+            read_node(&text, "b.node")
+        );
+    }
+    let poly = "4 2 0 1\n1 0 0 1\n2 1 0 1\n3 1 1 1\n4 0 1 1\n4 1\n1 1 2 1\n2 2 3 1\n\
+                3 3 4 1\n4 4 1 1\n1\n1 0.5 0.5\n1\n1 0.2 0.2 3 0.1\n";
+    assert_eq!(
+        read_poly(&with_bom(poly), "b.poly", true),
+        read_poly(poly, "b.poly", true)
+    );
+    // A `.poly` whose vertices are in the `.node` file.
+    let poly = "0 2 0 0\n1 0\n1 1 2\n0\n";
+    assert_eq!(
+        read_poly(&with_bom(poly), "b.poly", false),
+        read_poly(poly, "b.poly", false)
+    );
+    let ele = "2 3 1\n1 4 1 2 0.5\n2 2 3 4 1\n";
+    assert_eq!(read_ele(&with_bom(ele), "b.ele"), read_ele(ele, "b.ele"));
+    let area = "2\n1 0.5\n2 -1\n";
+    assert_eq!(
+        read_area(&with_bom(area), "b.area"),
+        read_area(area, "b.area")
+    );
+    let edge = "2 1\n1 4 1 1\n2 1 5 0\n";
+    assert_eq!(
+        read_edge(&with_bom(edge), "b.edge"),
+        read_edge(edge, "b.edge")
+    );
+    let voronoi = "2 0\n1 1 -1 -1 0\n2 1 3\n";
+    assert_eq!(
+        read_voronoi_edge(&with_bom(voronoi), "b.v.edge"),
+        read_voronoi_edge(voronoi, "b.v.edge")
+    );
+    let neigh = "1 3\n1 -1 2 -1\n";
+    assert_eq!(
+        read_neigh(&with_bom(neigh), "b.neigh"),
+        read_neigh(neigh, "b.neigh")
+    );
+    let off = "OFF\n3 1 3\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    assert_eq!(read_off(&with_bom(off), "b.off"), read_off(off, "b.off"));
+    // Line numbers do not move: the mark is no line of its own.
+    let e = read_node(&with_bom("3 2 0 0\n1 0 0\n2 1\n3 0 1\n"), "e.node").unwrap_err();
+    assert_eq!(e.line, Some(3), "{e}");
+    // A large vertex section, read by the fast path on two threads, reads the same.
+    let large = varied_node_text(120_000, 1, true, 9);
+    assert_eq!(
+        read_node(&with_bom(&large), "l.node"),
+        read_node(&large, "l.node")
+    );
+}
+
 /// A small seeded generator for the tests below.
 fn next(state: &mut u64) -> u64 {
     *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
