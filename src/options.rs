@@ -3,8 +3,10 @@
 //! The engine never sees the string. Parsing follows Triangle 1.6 (`parsecommandline`): the string is
 //! scanned one character at a time, unknown characters are ignored, and `q`, `a` and `S` may be
 //! followed by a number. Two deliberate improvements, documented in README.md:
-//! - exponent notation after a number (`a1e-5`, `q2.5e1`): an `e`/`E` directly after a number is an
-//!   exponent when it is followed by a digit, or by a sign and a digit; otherwise it is the `e` switch;
+//! - exponent notation after a number (`a1e-5`, `q2.5e1`): a lowercase `e` directly after a number is
+//!   an exponent when it is followed by a digit, or by a sign and a digit; otherwise it is the `e`
+//!   switch. An uppercase `E` is never an exponent: it is the `E` switch, as in Triangle (`a2E-1` is
+//!   `a2` and `E`; the `-` and `1` are ignored);
 //! - numbers are parsed without the C locale (Triangle uses `strtod`, which obeys `LC_NUMERIC`).
 
 use crate::error::Error;
@@ -238,7 +240,9 @@ impl Options {
 
 /// Reads the number that may follow a switch at `bytes[start..]`: the longest run of digits and
 /// dots (Triangle's rule; its longest valid decimal prefix is the value, `.` alone is 0), then an
-/// optional exponent. Returns `None` when no number follows, and the index after what was consumed.
+/// optional exponent: a lowercase `e` and digits, or `e`, a sign and digits (an uppercase `E` is the
+/// switch, as Triangle reads it). Returns `None` when no number follows, and the index after what
+/// was consumed.
 fn parse_number(bytes: &[u8], start: usize) -> (Option<f64>, usize) {
     let mut end = start;
     while end < bytes.len() && (bytes[end].is_ascii_digit() || bytes[end] == b'.') {
@@ -262,7 +266,7 @@ fn parse_number(bytes: &[u8], start: usize) -> (Option<f64>, usize) {
     };
     let whole_run_is_decimal = prefix_len == run.len();
     let mut text: String = run[..prefix_len].iter().map(|&b| b as char).collect();
-    if whole_run_is_decimal && end < bytes.len() && (bytes[end] == b'e' || bytes[end] == b'E') {
+    if whole_run_is_decimal && bytes.get(end) == Some(&b'e') {
         let mut k = end + 1;
         let mut exponent = String::from("e");
         if k < bytes.len() && (bytes[k] == b'+' || bytes[k] == b'-') {
@@ -327,7 +331,6 @@ mod tests {
         assert_eq!(o.max_area, Some(1e-5));
         assert!(!o.output.edges);
         assert_eq!(lib("q2.5e1").min_angle, Some(25.0));
-        assert_eq!(lib("pa1E+2").max_area, Some(100.0));
         // An `e` not followed by a digit (or sign and digit) stays the edge switch.
         let o = lib("pa1e");
         assert_eq!(o.max_area, Some(1.0));
@@ -338,6 +341,33 @@ mod tests {
         let o = lib("pq30en");
         assert_eq!(o.min_angle, Some(30.0));
         assert!(o.output.edges && o.output.neighbors);
+    }
+
+    #[test]
+    fn an_uppercase_e_after_a_number_is_the_e_switch() {
+        // Triangle reads `a2`, then the switch `E`, and ignores `-` and `1`.
+        let o = lib("pa2E-1");
+        assert_eq!(o.max_area, Some(2.0));
+        assert!(o.output.no_element_output && !o.output.edges);
+        let o = lib("pa1E+2");
+        assert_eq!(o.max_area, Some(1.0));
+        assert!(o.output.no_element_output);
+        let o = lib("pa0.5E3e");
+        assert_eq!(o.max_area, Some(0.5));
+        assert!(o.output.no_element_output && o.output.edges);
+        let o = lib("pq30E1");
+        assert_eq!(o.min_angle, Some(30.0));
+        assert!(o.output.no_element_output);
+        let o = lib("pq2.5E1");
+        assert_eq!(o.min_angle, Some(2.5));
+        assert!(o.output.no_element_output);
+        let o = lib("pqS5E2");
+        assert_eq!(o.max_steiner, Some(5));
+        assert!(o.output.no_element_output);
+        // Lowercase `e` keeps its rule after every number.
+        assert_eq!(lib("pqS5e1").max_steiner, Some(50));
+        assert_eq!(lib("pq2.5e+1").min_angle, Some(25.0));
+        assert!(!lib("pq2.5e+1").output.no_element_output);
     }
 
     #[test]

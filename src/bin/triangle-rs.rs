@@ -67,7 +67,8 @@ USAGE
 
     Switches are single letters after a dash, in one or several arguments (-pq30 or -p -q30).
     A number follows some of them directly, without a space: q30, a0.5, S100. Unlike Triangle,
-    a number may use exponent notation (a1e-5). Unknown letters are ignored.
+    a number may use exponent notation with a lowercase e (a1e-5); an uppercase E is the E
+    switch (a2E is a2 and E). Unknown letters are ignored.
 
 INPUT
     The input name chooses what is read. name.node: a set of vertices. name.poly: a planar
