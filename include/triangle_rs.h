@@ -107,10 +107,10 @@ const char *triangulate_last_error(void);
 
 /**
  * The warnings of the last call on this thread, one per line ("" when it had none, or
- * failed), with or without `Q`: duplicate vertices, and where a refined mesh falls short of
- * what was asked (precision of the coordinates exhausted, an angle above the guarantee not
- * reached, cancelled, a runaway stopped) although it is valid. The pointer stays valid until
- * the next call on this thread.
+ * failed), with or without `Q`: duplicate vertices, a `C` check that failed (one that passes
+ * is no warning), and where a refined mesh falls short of what was asked (precision of the
+ * coordinates exhausted, an angle above the guarantee not reached, cancelled, a runaway
+ * stopped) although it is valid. The pointer stays valid until the next call on this thread.
  */
 const char *triangulate_last_warning(void);
 

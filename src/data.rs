@@ -83,8 +83,78 @@ pub struct Output {
     pub edges: Option<Vec<i32>>,
     pub edge_markers: Option<Vec<i32>>,
 
-    /// Warnings (duplicate vertices, skipped segments, …), printed by the edge unless `Q`.
+    /// Warnings (duplicate vertices, skipped segments, a failed `C` check, …), printed by the
+    /// edge unless `Q`.
     pub warnings: Vec<String>,
+    /// `C`: what the check of the final mesh found (`None` without `C`). A mesh that passes is
+    /// a result, not a warning; one that fails is among the warnings too.
+    pub mesh_check: Option<MeshCheck>,
+}
+
+/// What `C`'s check of the final mesh found: whether the triangles fit together, face the same
+/// way and are (constrained) Delaunay, each judged with exact arithmetic.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum MeshCheck {
+    /// Consistent, and no edge but a segment fails the in-circle test.
+    Passed,
+    /// The triangles do not fit together (why).
+    Inconsistent(String),
+    /// The triangles fit together, but `inverted` of them are inverted or flat and
+    /// `not_delaunay` edges (segments aside) are not locally Delaunay.
+    Failed {
+        inverted: usize,
+        not_delaunay: usize,
+    },
+}
+
+impl MeshCheck {
+    /// The warning a failed check gives (`None` when it passed).
+    pub fn warning(&self) -> Option<String> {
+        match self {
+            MeshCheck::Passed => None,
+            MeshCheck::Inconsistent(why) => {
+                Some(format!("Mesh check: the topology is inconsistent: {why}."))
+            }
+            MeshCheck::Failed {
+                inverted,
+                not_delaunay,
+            } => Some(format!(
+                "Mesh check: {inverted} triangles are inverted or flat and {not_delaunay} edges are not locally Delaunay."
+            )),
+        }
+    }
+
+    /// The report as Triangle prints it after its statistics: a line on the consistency of the
+    /// mesh and one on its Delaunay property, each after the line that announces it (Triangle's
+    /// words where the mesh passes, ours where it fails).
+    pub fn report(&self) -> Vec<String> {
+        const CONSISTENT: &str = "In my studied opinion, the mesh appears to be consistent.";
+        const DELAUNAY: &str =
+            "By virtue of my perceptive intelligence, I declare the mesh Delaunay.";
+        let (consistency, delaunay) = match self {
+            MeshCheck::Passed => (CONSISTENT.to_string(), Some(DELAUNAY.to_string())),
+            MeshCheck::Inconsistent(why) => (format!("The topology is inconsistent: {why}."), None),
+            MeshCheck::Failed {
+                inverted,
+                not_delaunay,
+            } => (
+                match inverted {
+                    0 => CONSISTENT.to_string(),
+                    n => format!("{n} triangles are inverted or flat."),
+                },
+                Some(match not_delaunay {
+                    0 => DELAUNAY.to_string(),
+                    n => format!("{n} edges are not locally Delaunay."),
+                }),
+            ),
+        };
+        let mut lines = vec!["Checking consistency of mesh...".to_string(), consistency];
+        if let Some(delaunay) = delaunay {
+            lines.push("Checking Delaunay property of mesh...".to_string());
+            lines.push(delaunay);
+        }
+        lines
+    }
 }
 
 /// The Voronoi diagram (`v`). Counts are set even without `v` (Triangle does so when `vorout`
@@ -165,5 +235,44 @@ impl Hooks<'_> {
                 estimate,
             });
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mesh_check_reports_as_triangle_and_warns_only_when_failed() {
+        assert_eq!(MeshCheck::Passed.warning(), None);
+        assert_eq!(
+            MeshCheck::Passed.report(),
+            [
+                "Checking consistency of mesh...",
+                "In my studied opinion, the mesh appears to be consistent.",
+                "Checking Delaunay property of mesh...",
+                "By virtue of my perceptive intelligence, I declare the mesh Delaunay.",
+            ]
+        );
+        let failed = MeshCheck::Failed {
+            inverted: 0,
+            not_delaunay: 2,
+        };
+        assert_eq!(
+            failed.warning().as_deref(),
+            Some("Mesh check: 0 triangles are inverted or flat and 2 edges are not locally Delaunay.")
+        );
+        let report = failed.report();
+        assert_eq!(
+            report[1],
+            "In my studied opinion, the mesh appears to be consistent."
+        );
+        assert_eq!(report[3], "2 edges are not locally Delaunay.");
+        let inconsistent = MeshCheck::Inconsistent("edge 3 has no twin".into());
+        assert!(inconsistent
+            .warning()
+            .unwrap()
+            .contains("edge 3 has no twin"));
+        assert_eq!(inconsistent.report().len(), 2);
     }
 }

@@ -106,6 +106,7 @@ unsafe fn run(
         };
         let (mut mesh, voronoi) = result;
         let warnings = std::mem::take(&mut mesh.warnings);
+        let mesh_check = mesh.mesh_check.take();
         set_message(&LAST_WARNING, &warnings.join("\n"));
         let in_copy = *in_ref;
         // SAFETY: `out`/`vorout` are valid (checked non-NULL) and their non-NULL arrays are
@@ -121,6 +122,13 @@ unsafe fn run(
         if !quiet {
             for w in &warnings {
                 eprintln!("Warning: {w}");
+            }
+            // `C`: the check's report on stdout, as Triangle's library prints it (a failed
+            // check is among the warnings too; a passing one is not a warning).
+            if let Some(check) = &mesh_check {
+                for line in check.report() {
+                    println!("  {line}");
+                }
             }
         }
         Ok(())
@@ -321,11 +329,73 @@ pub extern "C" fn triangulate_last_error() -> *const c_char {
 }
 
 /// The warnings of the last call on this thread, one per line ("" when it had none, or
-/// failed), with or without `Q`: duplicate vertices, and where a refined mesh falls short of
-/// what was asked (precision of the coordinates exhausted, an angle above the guarantee not
-/// reached, cancelled, a runaway stopped) although it is valid. The pointer stays valid until
-/// the next call on this thread.
+/// failed), with or without `Q`: duplicate vertices, a `C` check that failed (one that passes
+/// is no warning), and where a refined mesh falls short of what was asked (precision of the
+/// coordinates exhausted, an angle above the guarantee not reached, cancelled, a runaway
+/// stopped) although it is valid. The pointer stays valid until the next call on this thread.
 #[no_mangle]
 pub extern "C" fn triangulate_last_warning() -> *const c_char {
     LAST_WARNING.with(|slot| slot.borrow().as_ptr())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn last_warning() -> String {
+        // SAFETY: the library's own NUL-terminated, thread-local string.
+        unsafe { CStr::from_ptr(triangulate_last_warning()) }
+            .to_string_lossy()
+            .into_owned()
+    }
+
+    /// Triangulates `points` (x, y pairs) with `switches` and gives the call's warnings.
+    fn warnings_of(switches: &CStr, points: &mut [f64]) -> String {
+        let mut input = TriangulateIO {
+            pointlist: points.as_mut_ptr(),
+            numberofpoints: (points.len() / 2) as c_int,
+            ..TriangulateIO::default()
+        };
+        let mut output = TriangulateIO::default();
+        // SAFETY: a valid input of `points`, an empty output struct; no `v`.
+        let code = unsafe {
+            triangulate(
+                switches.as_ptr(),
+                &mut input,
+                &mut output,
+                std::ptr::null_mut(),
+            )
+        };
+        assert_eq!(code, 0, "{switches:?}");
+        // Holes and regions alias the input's (none here); every other array is this call's.
+        for array in [
+            output.pointlist as *mut c_void,
+            output.pointattributelist as *mut c_void,
+            output.pointmarkerlist as *mut c_void,
+            output.trianglelist as *mut c_void,
+            output.triangleattributelist as *mut c_void,
+            output.neighborlist as *mut c_void,
+            output.segmentlist as *mut c_void,
+            output.segmentmarkerlist as *mut c_void,
+            output.edgelist as *mut c_void,
+            output.edgemarkerlist as *mut c_void,
+        ] {
+            // SAFETY: arrays this call allocated (or NULL).
+            unsafe { trifree(array) };
+        }
+        last_warning()
+    }
+
+    /// `C` on a mesh that passes leaves `triangulate_last_warning()` empty; other warnings stay.
+    #[test]
+    fn a_passing_check_is_no_warning() {
+        let square = [0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.3, 0.4];
+        assert_eq!(warnings_of(c"QC", &mut square.clone()), "");
+        assert_eq!(warnings_of(c"QCq", &mut square.clone()), "");
+        let mut with_duplicate = square.to_vec();
+        with_duplicate.extend_from_slice(&[0.3, 0.4]);
+        let warnings = warnings_of(c"QC", &mut with_duplicate);
+        assert_eq!(warnings.lines().count(), 1, "{warnings}");
+        assert!(warnings.contains("duplicate"), "{warnings}");
+    }
 }

@@ -34,7 +34,7 @@ mod threads;
 #[global_allocator]
 static MALLOC: std::alloc::System = std::alloc::System;
 
-pub use data::{Hooks, Input, Output, Phase, Progress, VoronoiDiagram, VoronoiOutput};
+pub use data::{Hooks, Input, MeshCheck, Output, Phase, Progress, VoronoiDiagram, VoronoiOutput};
 pub use error::Error;
 pub use options::{Options, SwitchSource};
 pub use pipeline::triangulate;

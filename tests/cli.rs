@@ -383,8 +383,8 @@ fn statistics_with_v_and_silence_with_q() {
         "Mesh triangles:",
         "Smallest angle:",
         "Largest angle:",
-        "Aspect ratio",
-        "Angles (degrees)",
+        "Triangle aspect ratio histogram:",
+        "Angle histogram:",
     ] {
         assert!(
             verbose.stdout.contains(text),
@@ -413,7 +413,7 @@ fn statistics_with_v_and_silence_with_q() {
     let angle_rows: usize = verbose
         .stdout
         .lines()
-        .skip_while(|l| !l.contains("Angles (degrees)"))
+        .skip_while(|l| !l.contains("Angle histogram"))
         .skip(1)
         .take(9)
         .flat_map(|l| {
@@ -432,6 +432,45 @@ fn statistics_with_v_and_silence_with_q() {
         default.stdout.contains("Mesh vertices: 14") && !default.stdout.contains("Smallest angle")
     );
     let quiet = run(&ours(), dir.path(), &["-Q", "dots.node"]);
+    assert!(quiet.stdout.is_empty() && quiet.stderr.is_empty());
+}
+
+/// `C`: a mesh that passes gets Triangle's report on stdout after the statistics, and no
+/// warning; warnings go to stdout too, as Triangle prints them; `Q` silences both.
+#[test]
+fn check_report_and_warnings_on_stdout() {
+    let dir = TempDir::new("check");
+    dir.write("a.node", SQUARE_WITH_CENTRE);
+    let r = run(&ours(), dir.path(), &["-C", "a.node"]);
+    assert!(r.ok(), "{}", r.stderr);
+    assert!(r.stderr.is_empty(), "stderr: {}", r.stderr);
+    let tail: Vec<&str> = r.stdout.lines().rev().take(4).collect();
+    assert_eq!(
+        tail,
+        [
+            "  By virtue of my perceptive intelligence, I declare the mesh Delaunay.",
+            "  Checking Delaunay property of mesh...",
+            "  In my studied opinion, the mesh appears to be consistent.",
+            "  Checking consistency of mesh...",
+        ],
+        "{}",
+        r.stdout
+    );
+    assert!(r.stdout.contains("\n  Mesh exterior boundary edges: 4\n"));
+    assert!(!r.stdout.contains("Warning"), "{}", r.stdout);
+    // A duplicate vertex: a warning, on stdout.
+    dir.write("d.node", "4\n1 0 0\n2 1 0\n3 0 1\n4 1 0\n");
+    let d = run(&ours(), dir.path(), &["-C", "d.node"]);
+    assert!(d.ok() && d.stderr.is_empty(), "{}", d.stderr);
+    assert!(
+        d.stdout
+            .lines()
+            .any(|l| l
+                .starts_with("Warning:  A duplicate vertex at (1, 0) appeared and was ignored")),
+        "{}",
+        d.stdout
+    );
+    let quiet = run(&ours(), dir.path(), &["-CQ", "d.node"]);
     assert!(quiet.stdout.is_empty() && quiet.stderr.is_empty());
 }
 

@@ -837,12 +837,12 @@ fn verbose_statistics_match_the_reference() {
         pair.assert_both_succeeded(&what);
         let (o, r) = (&pair.our_run.stdout, &pair.reference_run.stdout);
         assert_eq!(
-            histogram(o, "Angles (degrees)", 9),
+            histogram(o, "Angle histogram", 9),
             histogram(r, "Angle histogram", 9),
             "{what}: angle histograms differ"
         );
         assert_eq!(
-            histogram(o, "Aspect ratio (longest edge over shortest altitude)", 8),
+            histogram(o, "Triangle aspect ratio histogram", 8),
             histogram(r, "Triangle aspect ratio histogram", 8),
             "{what}: aspect ratio histograms differ"
         );
@@ -855,6 +855,130 @@ fn verbose_statistics_match_the_reference() {
             assert_eq!(value(o), value(r), "{what}: {label}");
         }
     }
+}
+
+/// The statistic lines of Triangle's stdout: from `Statistics:` on, without its memory and
+/// algorithmic statistics (counts of its own data structures and predicates).
+fn statistic_lines(stdout: &str) -> Vec<&str> {
+    let mut lines = Vec::new();
+    let mut section = "";
+    for line in stdout.lines() {
+        if !line.is_empty() && !line.starts_with(' ') {
+            section = line;
+        }
+        let statistics = section == "Statistics:" || section == "Mesh quality statistics:";
+        let check = ["  Checking", "  In my studied", "  By virtue"]
+            .iter()
+            .any(|p| line.starts_with(p));
+        if (statistics && !line.trim().is_empty()) || check {
+            lines.push(line);
+        }
+    }
+    lines
+}
+
+/// Scripts grep Triangle's stdout: every statistic line it prints (the statistics, with `V`
+/// the quality statistics and histograms, with `C` the check's report) is on our stdout word
+/// for word, our warnings are on stdout as Triangle's, and stderr holds nothing but, with `V`,
+/// our phases (a passing check is no warning).
+#[test]
+fn statistics_warnings_and_the_check_go_to_stdout_as_the_reference_prints_them() {
+    let square = "4 2 0 0\n1 0 0\n2 1 0\n3 1 1\n4 0 1\n";
+    let mesh = [("m.node", square), ("m.ele", "2 3 0\n1 1 2 3\n2 1 3 4\n")];
+    let dots = data("dots.node");
+    let pslg = data("pslg.poly");
+    // Large and small measures, which `%.5g` writes with exponents (5.1736e+06, 3.4901e-13).
+    let corners: [(f64, f64); 7] = [
+        (0.0, 0.0),
+        (31.0, 1.2),
+        (15.0, 27.0),
+        (4.0, 9.0),
+        (22.0, 13.0),
+        (0.1, 30.0),
+        (0.13, 0.2),
+    ];
+    let scaled = |scale: f64| {
+        let mut text = format!("{} 2 0 0\n", corners.len());
+        for (i, (x, y)) in corners.iter().enumerate() {
+            text.push_str(&format!("{} {} {}\n", i + 1, x * scale, y * scale));
+        }
+        text
+    };
+    let (large, small) = (scaled(1e6), scaled(1e-6));
+    type Case<'a> = (&'a str, Vec<(&'a str, &'a str)>, &'a str);
+    let cases: Vec<Case> = vec![
+        ("-C", vec![("dots.node", &dots)], "dots.node"),
+        ("-CV", vec![("dots.node", &dots)], "dots.node"),
+        ("-cV", vec![("dots.node", &dots)], "dots.node"),
+        ("-V", vec![("large.node", &large)], "large.node"),
+        ("-V", vec![("small.node", &small)], "small.node"),
+        ("-pC", vec![("pslg.poly", &pslg)], "pslg.poly"),
+        ("-pcCV", vec![("pslg.poly", &pslg)], "pslg.poly"),
+        ("-pOV", vec![("pslg.poly", &pslg)], "pslg.poly"),
+        ("-rC", mesh.to_vec(), "m"),
+    ];
+    for (switches, inputs, input) in cases {
+        let what = format!("{switches} {input}");
+        let Some(pair) = run_both("stdout", &inputs, &[switches, input]) else {
+            return;
+        };
+        pair.assert_both_succeeded(&what);
+        let (ours, theirs) = (&pair.our_run, &pair.reference_run);
+        let expected = statistic_lines(&theirs.stdout);
+        assert!(expected.len() >= 5, "{what}: {}", theirs.stdout);
+        if switches.contains('C') {
+            assert!(expected.iter().any(|l| l.contains("I declare the mesh")));
+        }
+        for line in expected {
+            assert!(
+                ours.stdout.lines().any(|l| l == line),
+                "{what}: our stdout lacks Triangle's line `{line}`:\n{}",
+                ours.stdout
+            );
+        }
+        let progress = |l: &str| {
+            switches.contains('V')
+                && [
+                    "triangle-rs: Delaunay",
+                    "triangle-rs: segment",
+                    "triangle-rs: output",
+                ]
+                .iter()
+                .any(|p| l.starts_with(p))
+        };
+        assert!(
+            ours.stderr.lines().all(progress),
+            "{what}: stderr holds more than the phases:\n{}",
+            ours.stderr
+        );
+    }
+
+    // Warnings: on stdout, Triangle's words first (ours add which vertex is duplicated).
+    let duplicates = "5 2 0 0\n1 0 0\n2 1 0\n3 1 1\n4 0 1\n5 1 1\n";
+    let Some(pair) = run_both("warnings", &[("d.node", duplicates)], &["-C", "d.node"]) else {
+        return;
+    };
+    pair.assert_both_succeeded("-C d.node");
+    let warnings: Vec<&str> = pair
+        .reference_run
+        .stdout
+        .lines()
+        .filter(|l| l.starts_with("Warning:"))
+        .collect();
+    assert_eq!(warnings.len(), 1, "{}", pair.reference_run.stdout);
+    for warning in warnings {
+        let words = warning.trim_end_matches('.');
+        assert!(
+            pair.our_run.stdout.lines().any(|l| l.starts_with(words)),
+            "our stdout lacks `{words}`:\n{}",
+            pair.our_run.stdout
+        );
+    }
+    assert!(
+        pair.our_run.stderr.is_empty(),
+        "-C d.node: {}",
+        pair.our_run.stderr
+    );
 }
 
 /// Counts in the header line of each output file.

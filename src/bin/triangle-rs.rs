@@ -381,9 +381,10 @@ fn run(args: &[String]) -> Result<(), Failure> {
     };
     let (mesh, voronoi) =
         pipeline::triangulate(&engine_options, &input, &hooks).map_err(|e| fail(e.to_string()))?;
+    // Warnings go to stdout, where Triangle prints them (errors go to stderr).
     if !quiet {
         for warning in &mesh.warnings {
-            eprintln!("triangle-rs: warning: {warning}");
+            println!("Warning:  {warning}");
         }
     }
 
@@ -419,6 +420,13 @@ fn run(args: &[String]) -> Result<(), Failure> {
     write_all(&planned, quiet)?;
     if !quiet {
         print_statistics(&options, &input, &mesh);
+        // `C`: the check's report after the statistics, as Triangle prints it (a failed check
+        // was among the warnings too).
+        if let Some(check) = &mesh.mesh_check {
+            for line in check.report() {
+                println!("  {line}");
+            }
+        }
     }
     Ok(())
 }
@@ -465,21 +473,44 @@ fn svg_file<'a>(
 // ------------------------------------------------------------------------------------------------
 // Statistics
 
-/// Formats like C's `%.5g` (as Triangle's statistics): five significant digits, no trailing zeros.
+/// Formats like C's `%.5g` (as Triangle's statistics): five significant digits, no trailing
+/// zeros, an exponent (`1.2346e+05`) below 10^-4 or from 10^5 on.
 fn short(value: f64) -> String {
-    if value == 0.0 || !value.is_finite() {
-        return format!("{value}");
+    c_g(value, 5)
+}
+
+/// Formats like C's `%.{digits}g`: `digits` significant digits, no trailing zeros, an exponent
+/// (`1.2346e+05`) below 10^-4 or from 10^digits on.
+fn c_g(value: f64, digits: usize) -> String {
+    let digits = digits.max(1) as i32;
+    if !value.is_finite() {
+        return match value {
+            v if v.is_nan() => "nan".into(),
+            v if v > 0.0 => "inf".into(),
+            _ => "-inf".into(),
+        };
     }
-    let magnitude = value.abs().log10().floor() as i32;
-    if !(-5..15).contains(&magnitude) {
-        return format!("{value:.4e}");
-    }
-    let decimals = (4 - magnitude).max(0) as usize;
-    let text = format!("{value:.decimals$}");
-    if text.contains('.') {
-        text.trim_end_matches('0').trim_end_matches('.').to_string()
+    let trimmed = |text: String| {
+        if text.contains('.') {
+            text.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            text
+        }
+    };
+    // The exponent after rounding to `digits` digits decides the style, as in C.
+    let scientific = format!("{value:.*e}", (digits - 1) as usize);
+    let (mantissa, exponent) = scientific.split_once('e').unwrap_or((&scientific, "0"));
+    let exponent: i32 = exponent.parse().unwrap_or(0);
+    if value != 0.0 && !(-4..digits).contains(&exponent) {
+        let sign = if exponent < 0 { '-' } else { '+' };
+        format!(
+            "{}e{sign}{:02}",
+            trimmed(mantissa.to_string()),
+            exponent.abs()
+        )
     } else {
-        text
+        let decimals = (digits - 1 - exponent).max(0) as usize;
+        trimmed(format!("{value:.decimals$}"))
     }
 }
 
@@ -620,16 +651,18 @@ fn print_statistics(options: &Options, input: &Input<'_>, mesh: &Output) {
     println!("  Mesh vertices: {}", mesh.point_count);
     println!("  Mesh triangles: {}", mesh.triangle_count);
     println!("  Mesh edges: {}", mesh.edge_count);
+    // Triangle's words: the exterior boundary edges have a triangle on one side only (holes'
+    // edges included); the interior ones are the segments inside the domain.
     let boundary = boundary_edge_count(triangles, mesh.corners);
-    println!("  Mesh boundary edges: {boundary}");
-    if options.uses_segments() {
+    println!("  Mesh exterior boundary edges: {boundary}");
+    if options.pslg || options.refine {
         println!(
-            "  Mesh segments (constrained edges): {}",
-            mesh.segment_count
+            "  Mesh interior boundary edges: {}",
+            mesh.segment_count.saturating_sub(boundary)
         );
         println!(
-            "  Mesh segments inside the domain: {}",
-            mesh.segment_count.saturating_sub(boundary)
+            "  Mesh subsegments (constrained edges): {}",
+            mesh.segment_count
         );
     }
     println!();
@@ -641,54 +674,56 @@ fn print_statistics(options: &Options, input: &Input<'_>, mesh: &Output) {
     };
     let first_index = options.first_index();
     let Some(q) = measure_quality(points, triangles, mesh.corners, first_index) else {
-        println!("Mesh quality: no triangles.\n");
+        println!("Mesh quality statistics: no triangles.\n");
         return;
     };
-    println!("Mesh quality:\n");
+    // Triangle's layout: two columns of 32 characters either side of `    |`.
+    println!("Mesh quality statistics:\n");
     println!(
-        "  Smallest triangle area: {:>12}    Largest triangle area: {:>12}",
+        "  Smallest area: {:>16}   |  Largest area: {:>16}",
         short(q.smallest_area),
         short(q.largest_area)
     );
     println!(
-        "  Shortest edge:          {:>12}    Longest edge:          {:>12}",
+        "  Shortest edge: {:>16}   |  Longest edge: {:>16}",
         short(q.shortest_edge),
         short(q.longest_edge)
     );
     println!(
-        "  Shortest altitude:      {:>12}    Largest aspect ratio:  {:>12}",
+        "  Shortest altitude: {:>12}   |  Largest aspect ratio: {:>8}",
         short(q.shortest_altitude),
         short(q.largest_aspect_ratio)
     );
-    println!("\n  Aspect ratio (longest edge over shortest altitude), triangles per range:");
+    println!("\n  Triangle aspect ratio histogram:");
     let mut lower = 2.0 / 3f64.sqrt();
-    let mut rows: Vec<String> = Vec::new();
+    let mut bins: Vec<(String, String, usize)> = Vec::new();
     for (bin, &count) in q.aspect_histogram.iter().enumerate() {
-        let range = match ASPECT_BOUNDS.get(bin) {
-            Some(&upper) => format!("{:>7} to {:<7}", short(lower), short(upper)),
-            None => format!("{:>7} and more ", short(lower)),
-        };
-        rows.push(format!("{range}: {count:>9}"));
-        lower = ASPECT_BOUNDS.get(bin).copied().unwrap_or(lower);
+        let upper = ASPECT_BOUNDS.get(bin).copied();
+        // The bounds as `%.6g` (100000 in full).
+        let bound = |b: f64| c_g(b, 6);
+        bins.push((bound(lower), upper.map_or(String::new(), bound), count));
+        lower = upper.unwrap_or(lower);
     }
-    let half = rows.len().div_ceil(2);
+    let half = bins.len().div_ceil(2);
     for i in 0..half {
-        println!(
-            "    {}    {}",
-            rows[i],
-            rows.get(i + half).map_or("", |s| s.as_str())
-        );
+        let (low, up, count) = &bins[i];
+        let mut row = format!("  {low:>6} - {up:<10}:{count:>10}");
+        if let Some((low, up, count)) = bins.get(i + half) {
+            row.push_str(&format!("    | {low:>6} - {up:<11}:{count:>10}"));
+        }
+        println!("{row}");
     }
+    println!("  (Aspect ratio is longest edge divided by shortest altitude)");
     println!(
-        "\n  Smallest angle: {:>10}    Largest angle: {:>10}",
+        "\n  Smallest angle: {:>15}   |  Largest angle: {:>15}",
         short(q.smallest_angle),
         short(q.largest_angle)
     );
-    println!("\n  Angles (degrees), corners per range:");
+    println!("\n  Angle histogram:");
     for i in 0..9 {
         let j = i + 9;
         println!(
-            "    {:>3} to {:>3}: {:>9}        {:>3} to {:>3}: {:>9}",
+            "    {:>3} - {:>3} degrees:{:>10}    |    {:>3} - {:>3} degrees:{:>10}",
             10 * i,
             10 * i + 10,
             q.angle_histogram[i],

@@ -2,7 +2,7 @@
 //! [`Error`], never a silent skip), and of the finished mesh (`C`).
 
 use super::Meshed;
-use crate::data::Input;
+use crate::data::{Input, MeshCheck};
 use crate::error::Error;
 use crate::geometry::{Point, Predicates};
 use crate::mesh::GHOST;
@@ -147,11 +147,12 @@ pub(super) fn check_indices_and_seeds(options: &Options, input: &Input<'_>) -> R
     Ok(())
 }
 
-/// `C`: checks the final mesh with exact arithmetic and reports what it found.
-pub(super) fn check_mesh<P: Predicates>(meshed: &Meshed) -> String {
+/// `C`: checks the final mesh with exact arithmetic: what it found (a passing check is no
+/// warning; [`MeshCheck::warning`] gives the one of a failing check).
+pub(super) fn check_mesh<P: Predicates>(meshed: &Meshed) -> MeshCheck {
     let mesh = &meshed.mesh;
     if let Err(why) = mesh.check_topology() {
-        return format!("Mesh check: the topology is inconsistent: {why}.");
+        return MeshCheck::Inconsistent(why);
     }
     let mut inverted = 0;
     let mut not_delaunay = 0;
@@ -171,9 +172,10 @@ pub(super) fn check_mesh<P: Predicates>(meshed: &Meshed) -> String {
         }
     }
     match (inverted, not_delaunay) {
-        (0, 0) => "Mesh check: the mesh appears to be consistent, and constrained Delaunay.".into(),
-        _ => format!(
-            "Mesh check: {inverted} triangles are inverted or flat and {not_delaunay} edges are not locally Delaunay."
-        ),
+        (0, 0) => MeshCheck::Passed,
+        _ => MeshCheck::Failed {
+            inverted,
+            not_delaunay,
+        },
     }
 }

@@ -426,7 +426,9 @@ fn run<P: Predicates>(
         meshed.domain = Domain::whole(&mut meshed.mesh);
     }
     if options.check {
-        output.warnings.push(check_mesh::<P>(&meshed));
+        let check = check_mesh::<P>(&meshed);
+        output.warnings.extend(check.warning());
+        output.mesh_check = Some(check);
     }
     if options.pslg && !options.output.no_poly_output {
         output.alias_holes_and_regions = true;
@@ -582,6 +584,7 @@ fn first_copies(count: usize, vertex_count: usize, ends: impl Fn(usize) -> [u32;
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::data::MeshCheck;
     use crate::options::SwitchSource;
 
     /// `first_copies` against the quadratic definition, on random segments over few vertices
@@ -666,5 +669,35 @@ mod tests {
                 "{switches}"
             );
         }
+    }
+
+    /// `C` on a mesh that passes: a result, not a warning (other warnings stay).
+    #[test]
+    fn a_passing_mesh_check_is_no_warning() {
+        let points = [0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.3, 0.4, 0.3, 0.4];
+        let segments = [1, 2, 2, 3, 3, 4, 4, 1];
+        let input = Input {
+            points: &points,
+            segments: &segments,
+            ..Input::default()
+        };
+        for switches in ["QC", "QCe", "QpC", "QpqC", "QcCV"] {
+            let options = Options::parse(switches, SwitchSource::Library).expect("switches");
+            let output = triangulate(&options, &input, &Hooks::default())
+                .expect("triangulated")
+                .0;
+            assert_eq!(output.mesh_check, Some(MeshCheck::Passed), "{switches}");
+            // The duplicate of vertex 5 is the only warning.
+            assert_eq!(
+                output.warnings.len(),
+                1,
+                "{switches}: {:?}",
+                output.warnings
+            );
+            assert!(output.warnings[0].contains("duplicate"), "{switches}");
+        }
+        let options = Options::parse("Q", SwitchSource::Library).expect("switches");
+        let output = triangulate(&options, &input, &Hooks::default()).expect("triangulated");
+        assert_eq!(output.0.mesh_check, None, "no check without C");
     }
 }
