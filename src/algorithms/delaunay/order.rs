@@ -182,6 +182,10 @@ fn rounds_in_hilbert_order_and_points(
 /// Bits of a point's index in the words of [`sorted_words`].
 const INDEX_BITS: u32 = 27;
 
+/// Up to this many points, [`sorted_words`] sorts by comparison: below it the histogram over
+/// every (round, top key bits) bucket costs more than the sort.
+const SMALL_SORT: usize = 1024;
+
 /// Sorts the words of [`rounds_in_hilbert_order`] for the points that `keep` accepts (`m` of
 /// the `n`) into `room[m..2m]` (`room[..m]` is the sort's spare room), which it returns, and
 /// (with `POINTS`) the kept points in the same order (else an empty list). A kept point's round
@@ -216,6 +220,23 @@ fn sorted_words<'r, const POINTS: bool>(
     // SAFETY: the loop above wrote the first `m` words, and `MaybeUninit<u64>` has the layout
     // of `u64`.
     let words = unsafe { &mut *(words as *mut [MaybeUninit<u64>] as *mut [u64]) };
+    if n <= SMALL_SORT {
+        // A few points: one comparison sort. The words are distinct (their indices differ),
+        // so it gives the order of the buckets and passes below, whose histogram of
+        // `ROUNDS << TOP_BITS` buckets alone costs more than sorting these.
+        words.sort_unstable();
+        let mut sorted_points: Vec<Point> = Vec::with_capacity(if POINTS { n } else { 0 });
+        let index_mask = (1u64 << INDEX_BITS) - 1;
+        for (slot, &w) in sorted.iter_mut().zip(words.iter()) {
+            slot.write(w);
+            if POINTS {
+                sorted_points.push(points[(w & index_mask) as usize]);
+            }
+        }
+        // SAFETY: the loop wrote each of the `n` words of `sorted`.
+        let sorted = unsafe { &mut *(sorted as *mut [MaybeUninit<u64>] as *mut [u64]) };
+        return (sorted, sorted_points);
+    }
     // The bucket of a word: its round and the top bits of its key.
     let bucket = |w: u64| (w >> (32 + INDEX_BITS - TOP_BITS)) as usize;
     let mut starts = vec![0usize; (ROUNDS << TOP_BITS) + 1];
