@@ -4,10 +4,10 @@ import doctest
 
 import pytest
 
-from triangle_rs import compat, data, meshing, triangulateio
+from triangle_rs import compat, data, meshing, report, triangulateio
 
 
-@pytest.mark.parametrize("module", [compat, data, meshing, triangulateio], ids=lambda m: m.__name__)
+@pytest.mark.parametrize("module", [compat, data, meshing, report, triangulateio], ids=lambda m: m.__name__)
 def test_docstring_examples(module):
     result = doctest.testmod(module, optionflags=doctest.NORMALIZE_WHITESPACE)
     assert result.attempted > 0 and result.failed == 0

@@ -109,9 +109,11 @@ def test_a_mesh_short_of_the_asked_quality_warns():
     # hold a 30° mesh. The call succeeds (a valid mesh) and says so, with or without Q.
     rng = np.random.default_rng(5)
     far = 1e15 + rng.random((300, 2)) * 100.0
-    with pytest.warns(RuntimeWarning, match="precision"):
+    with pytest.warns(RuntimeWarning, match="precision") as record:
         out = triangle_rs.triangulate({"vertices": far}, "q30Q")
     assert len(out["triangles"]) > 0
+    # One warning, at this line.
+    assert len(record) == 1 and record[0].filename == __file__
     # The same points 10^6 times nearer to their doubles reach the angle, with no warning.
     near = 1e9 + rng.random((300, 2)) * 1e-3
     import warnings as python_warnings

@@ -2,7 +2,11 @@
 Python process that is 2 s into an endless refinement (switch ``u`` with a callback that splits
 every triangle). The binding must set the cancel flag, wait for the library to return, and only
 then raise KeyboardInterrupt. Raising earlier leaves a daemon thread inside the library, and the
-process then dies at exit with "FATAL: exception not rethrown" (SIGABRT, status 134)."""
+process then dies at exit with "FATAL: exception not rethrown" (SIGABRT, status 134).
+
+The child sets Python's own SIGINT handler first: a process started from a shell that ignores
+SIGINT (a background job, `nohup`) inherits SIG_IGN, and Python then leaves it ignored, so Ctrl-C
+would never reach the code under test."""
 
 import os
 import signal
@@ -16,7 +20,11 @@ import pytest
 PYTHON_DIR = Path(__file__).resolve().parent.parent
 
 CHILD = r"""
+import signal
 import sys
+
+# The handler under test, whatever the parent left (a background job inherits SIG_IGN).
+signal.signal(signal.SIGINT, signal.default_int_handler)
 import triangle_rs
 from triangle_rs import TriangulateIO, triangulate
 from triangle_rs._library import Library

@@ -177,6 +177,18 @@ def test_concurrent_calls_with_different_callbacks():
 # --- Ctrl-C --------------------------------------------------------------------------------------
 
 
+@pytest.fixture
+def sigint_raises_keyboard_interrupt():
+    """Python's own SIGINT handler for the test, restored after it. The tests below send SIGINT
+    to this process and expect KeyboardInterrupt: started from a shell that ignores SIGINT (a
+    background job, `nohup`), Python inherits SIG_IGN and keeps it, and the signal is lost."""
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
 class StallingLibrary:
     """Stands in for the library: raises SIGINT in this process, then works until the cancel
     flag is set (at most ~30 s), as a long refinement polls it."""
@@ -199,7 +211,7 @@ class StallingLibrary:
         raise AssertionError("nothing was allocated")
 
 
-def test_keyboard_interrupt_sets_the_cancel_flag_and_is_re_raised():
+def test_keyboard_interrupt_sets_the_cancel_flag_and_is_re_raised(sigint_raises_keyboard_interrupt):
     # `q` refines: such calls run in a worker thread so that Ctrl-C reaches the library.
     library = StallingLibrary()
     with pytest.raises(KeyboardInterrupt):
@@ -236,7 +248,7 @@ class SlowToStopLibrary:
 
 
 @pytest.mark.parametrize("raised", [SystemExit, LookupError])
-def test_any_exception_while_waiting_cancels_and_is_raised_after_the_library_returned(raised):
+def test_any_exception_while_waiting_cancels_and_is_raised_after_the_library_returned(raised, sigint_raises_keyboard_interrupt):
     # A signal handler raising SystemExit (or anything else), then a second Ctrl-C while the
     # library winds down: the first exception comes out, and only after the library returned.
     library = SlowToStopLibrary([signal.SIGUSR1, signal.SIGINT])
@@ -253,7 +265,7 @@ def test_any_exception_while_waiting_cancels_and_is_raised_after_the_library_ret
     assert library.saw_cancel and library.returned
 
 
-def test_keyboard_interrupt_stops_a_real_refinement():
+def test_keyboard_interrupt_stops_a_real_refinement(sigint_raises_keyboard_interrupt):
     limit = 2_000_000
     calls = []
 

@@ -14,7 +14,11 @@ Plots (matplotlib, imported only when used): ``plot_triangulateio`` and ``plot_i
 :mod:`triangle_rs.plotting`. meshio (imported only when used): ``to_meshio(out)``. Neither
 ``import triangle_rs`` nor ``from triangle_rs import *`` imports matplotlib or meshio.
 
-All indices are 0-based. Errors raise :class:`TriangulateError` with the library's message.
+All indices are 0-based. Errors raise :class:`TriangulateError` with the library's message. A call
+warns at most once, with a :class:`TriangulateWarning` (a ``RuntimeWarning``) when its mesh falls
+short of what was asked (a quality bound not reached, the ``S`` budget spent); what Triangle does
+silently under ``Q`` (duplicate vertices ignored, a passing ``C`` check) is no warning: ``V``
+prints it, and :func:`last_report` keeps it.
 """
 
 from __future__ import annotations
@@ -30,6 +34,7 @@ from .core import Progress, TriangulateError, Unsuitable
 from .data import get_data, load, loads, show_data
 from .meshing import MeshResult, mesh, mesh_switches
 from .meshio_io import to_meshio
+from .report import Report, TriangulateWarning, last_report
 from .pypi_plot import compare, comparev, plot
 from .triangulateio import TriangulateIO, numberofedges, numberofpoints, numberofsegments, numberoftriangles
 
@@ -39,7 +44,9 @@ __all__ = [
     "ENVIRONMENT_VARIABLE",
     "Library",
     "MeshResult",
+    "Report",
     "TriangulateError",
+    "TriangulateWarning",
     "TriangulateIO",
     "Progress",
     "Unsuitable",
@@ -48,6 +55,7 @@ __all__ = [
     "convex_hull",
     "delaunay",
     "get_data",
+    "last_report",
     "library_path",
     "load",
     "loads",

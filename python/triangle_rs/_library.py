@@ -135,9 +135,10 @@ class Library:
         unsuitable: "ctypes._CFuncPtr | None",
         cancel: ctypes.c_int,
         progress: "ctypes._CFuncPtr | None" = None,
-    ) -> tuple[int, str, list[str]]:
+    ) -> tuple[int, str, str]:
         """Runs ``triangulate_reentrant`` (``triangulate_progress`` with a ``progress``
-        callback); returns its code, on failure the message, and on success the warnings.
+        callback); returns its code, on failure the message, and on success the warning lines
+        (``triangulate_last_warning``: one text, a line each, "" when none).
 
         Both are read on the calling thread right after the call, because the library keeps
         them per thread.
@@ -160,10 +161,9 @@ class Library:
             code = self._reentrant(*arguments)
         if code == 0:
             text = self._last_warning() if self._last_warning is not None else None
-            warnings = text.decode("utf-8", "replace").splitlines() if text else []
-            return 0, "", warnings
+            return 0, "", text.decode("utf-8", "replace") if text else ""
         message = self._last_error()
-        return code, message.decode("utf-8", "replace") if message else "", []
+        return code, message.decode("utf-8", "replace") if message else "", ""
 
     def free(self, address: int) -> None:
         """Releases an array that the library allocated (``trifree``)."""

@@ -1,16 +1,21 @@
 """The Triangulate.jl-style call: ``triangulate(switches, tio) -> (out, vorout)``, and the machinery
-every API of this package goes through (errors, the per-call unsuitable callback, Ctrl-C)."""
+every API of this package goes through (errors, warnings, the per-call unsuitable callback,
+Ctrl-C)."""
 
 from __future__ import annotations
 
 import ctypes
+import os
 import sys
 import threading
 import time
 import warnings
 from typing import Callable, Optional
 
+import numpy as np
+
 from ._library import CTriangulateIO, Library, ProgressCallback, UnsuitableCallback, load_library
+from .report import Report, Switches, TriangulateWarning, budget_shortfall, print_notes, set_last_report
 from .triangulateio import TriangulateIO, free_c, from_c, to_c
 
 #: ``unsuitable(x1, y1, x2, y2, x3, y3, area) -> bool``: the corners of a triangle (counter-
@@ -104,9 +109,29 @@ def run(
     library: Optional[Library] = None,
     progress: "Progress | bool | None" = None,
 ) -> tuple[TriangulateIO, TriangulateIO]:
-    """The raw call: ``switches`` exactly as given (no ``z`` added). Every API ends here."""
+    """The raw call: ``switches`` as given (no ``z`` added). Every API ends here.
+
+    The library always gets ``Q`` (so it prints nothing itself), and what it says besides the
+    mesh is sorted here (:mod:`triangle_rs.report`): notes (duplicate vertices ignored, ...) are
+    printed to stdout only with ``V`` and kept in :func:`triangle_rs.last_report`; problems (a
+    bound not reached, ...) make one :class:`TriangulateWarning`, at the caller's line.
+    """
     lib = library if library is not None else load_library()
-    encoded = encode_switches(switches)
+    set_last_report(None)
+    out, vorout, text = _call(lib, switches, tio, unsuitable, progress)
+    _report(lib, switches, tio, text, out)
+    return out, vorout
+
+
+def _call(
+    lib: Library,
+    switches: str,
+    tio: TriangulateIO,
+    unsuitable: Optional[Unsuitable] = None,
+    progress: "Progress | bool | None" = None,
+) -> tuple[TriangulateIO, TriangulateIO, str]:
+    """One library call: the mesh, the Voronoi diagram and the warning lines (one text)."""
+    encoded = encode_switches(switches if "Q" in switches else "Q" + switches)
     c_in, keep_alive = to_c(tio)
     c_out, c_vorout = CTriangulateIO(), CTriangulateIO()
     cancel = ctypes.c_int(0)
@@ -116,23 +141,21 @@ def run(
     report = display.update if display is not None else (progress or None)
     c_progress = _wrap_progress(report, cancel, callback_errors) if report is not None else None
 
-    def call(_inputs: list = keep_alive) -> tuple[int, str, list[str]]:
+    def call(_inputs: list = keep_alive) -> tuple[int, str, str]:
         # `_inputs` holds the input arrays as long as the library may read them.
         return lib.triangulate(encoded, c_in, c_out, c_vorout, c_callback, cancel, c_progress)
 
     may_run_long = bool(_REFINING_SWITCHES & set(switches)) or c_in.numberofpoints >= _LARGE_INPUT_POINTS
     foreign = _ForeignCall(call, interruptible=may_run_long)
     try:
-        code, message, library_warnings = foreign.run_interruptibly(cancel)
+        code, message, text = foreign.run_interruptibly(cancel)
         if callback_errors:
             raise callback_errors[0]
         if code != 0:
             raise TriangulateError(message or f"triangulate failed (code {code})", code)
-        # What the library warns of (a mesh that falls short of the asked quality although
-        # valid, duplicate vertices), whether or not `Q` silenced its printing.
-        for text in library_warnings:
-            warnings.warn(text, RuntimeWarning, stacklevel=3)
-        return from_c(c_out), from_c(c_vorout)
+        if not isinstance(text, str):  # a stand-in library's list of lines
+            text = "\n".join(text)
+        return from_c(c_out), from_c(c_vorout), text
     finally:
         if display is not None:
             display.close()
@@ -140,6 +163,66 @@ def run(
         if foreign.finished():
             free_c(c_out, lib.free)
             free_c(c_vorout, lib.free)
+
+
+def _report(lib: Library, switches: str, tio: TriangulateIO, text: str, out: TriangulateIO) -> None:
+    """Sorts what the call said besides its mesh, prints the notes with ``V`` and warns once of
+    the problems (see :mod:`triangle_rs.report`)."""
+    parsed = Switches(switches) if ("S" in switches or "V" in switches) else None
+    report = Report(switches, text)
+    if parsed is not None and parsed.max_steiner is not None and not report.problems:
+        shortfall = _budget_problem(lib, switches, parsed, tio, out)
+        if shortfall is not None:
+            report = Report(switches, text, (shortfall,))
+    set_last_report(report)
+    if parsed is not None and parsed.verbosity:
+        print_notes(report, parsed.verbosity)
+    if report.problems:
+        _warn_at_caller(report.warning_message())
+
+
+def _budget_problem(lib: Library, switches: str, parsed: Switches, tio: TriangulateIO, out: TriangulateIO) -> Optional[str]:
+    """The ``S`` budget, when it stopped refinement short of ``q`` or ``a<area>``. The library
+    does not say whether it did (see the README), so: the mesh must miss a bound
+    (:func:`budget_shortfall`: some inputs keep small angles whatever the budget), and the
+    budget must have stopped refinement. The count of new vertices does not tell (refinement
+    deletes some of the vertices it inserted, which ``S`` counts, and crossing segments add
+    vertices it does not count), so the same call runs again with a budget of ``S + 1``: it
+    gives the same mesh exactly when the budget did not stop refinement. Not with ``u``, whose
+    test would be asked again: then a mesh with ``S`` new vertices or more is taken as stopped."""
+    shortfall = budget_shortfall(parsed, out.pointlist, out.trianglelist, out.segmentlist)
+    if shortfall is None or parsed.steiner_span is None:
+        return None
+    budget = parsed.max_steiner
+    if "u" in parsed.letters:
+        return shortfall if out.numberofpoints - tio.numberofpoints >= budget else None
+    start, end = parsed.steiner_span
+    more, _, _ = _call(lib, f"{switches[:start]}S{budget + 1}{switches[end:]}", tio)
+    if more.numberofpoints == out.numberofpoints and np.array_equal(more.pointlist, out.pointlist):
+        return None
+    return shortfall
+
+
+_PACKAGE_DIRECTORY = os.path.dirname(os.path.abspath(__file__)) + os.sep
+_in_package: dict[str, bool] = {}
+
+
+def _warn_at_caller(message: str) -> None:
+    """One :class:`TriangulateWarning`, attributed to the first frame outside this package:
+    the user's line, whichever public function it called (computed, not a fixed
+    ``stacklevel``: the entry points are one to three frames above ``run``)."""
+    frame = sys._getframe(0)
+    level = 1
+    while frame is not None:
+        filename = frame.f_code.co_filename
+        inside = _in_package.get(filename)
+        if inside is None:
+            inside = _in_package[filename] = os.path.abspath(filename).startswith(_PACKAGE_DIRECTORY)
+        if not inside:
+            break
+        frame = frame.f_back
+        level += 1
+    warnings.warn(message, TriangulateWarning, stacklevel=level)
 
 
 def _wrap_unsuitable(

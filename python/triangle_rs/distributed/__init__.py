@@ -40,7 +40,6 @@ from __future__ import annotations
 
 import glob
 import os
-import warnings
 from dataclasses import dataclass
 from typing import Any, Callable, Optional, Sequence
 
@@ -71,7 +70,8 @@ _SPLIT_BYTES_PER_POINT = 64
 class DistributedTriangulation:
     """The result: ``points`` (the input, a dask array (n, 2 + attributes)) and ``triangles``
     (a dask array (m, 3) of global 0-based vertex indices, counter-clockwise, one block per
-    tile, held on the workers)."""
+    tile, held on the workers). ``duplicates`` counts the input points ignored as copies of
+    earlier ones (each keeps its first copy): as in the single call, they are no warning."""
 
     points: Any
     triangles: Any
@@ -331,9 +331,8 @@ def delaunay(
 
     final = [owned[t] for t in imported]
     sizes = client.gather([client.submit(len, f, pure=True) for f in final])
+    # Counted in the result, not warned of: the single call ignores duplicates silently too.
     duplicates = sum(duplicates_of.values())
-    if duplicates:
-        warnings.warn(f"{duplicates} duplicate vertices were ignored (each keeps its first copy).", RuntimeWarning, stacklevel=2)
     triangles = da.concatenate(
         [da.from_delayed(f, shape=(size, 3), dtype=index_dtype) for f, size in zip(final, sizes)], axis=0
     )

@@ -15,7 +15,6 @@ triangulations themselves are the library's, on the coordinates as given.
 
 from __future__ import annotations
 
-import warnings
 from typing import Any, Optional
 
 import numpy as np
@@ -168,9 +167,9 @@ def _local_delaunay(xy: np.ndarray) -> Optional[tuple]:
     triangulation, or ``None`` when the points make none (fewer than three, or on a line)."""
     if len(xy) < 3:
         return None
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RuntimeWarning)  # duplicates: counted by the round
-        out, _ = run("Qzn", TriangulateIO(pointlist=np.ascontiguousarray(xy)))
+    # Duplicates are counted by the round; the call warns of nothing (a Delaunay triangulation
+    # has no bound to fall short of).
+    out, _ = run("Qzn", TriangulateIO(pointlist=np.ascontiguousarray(xy)))
     triangles = np.asarray(out.trianglelist).reshape(-1, 3)
     if len(triangles) == 0:
         return None
