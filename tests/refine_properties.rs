@@ -999,3 +999,17 @@ fn conforming_delaunay_on_rounded_decimal_point_sets_is_exact() {
         }
     }
 }
+
+/// An `S` budget that stops refinement short of the bounds says so (one warning naming the
+/// budget); one that stops nothing says nothing.
+#[test]
+fn an_s_budget_that_leaves_bad_triangles_warns_and_one_that_does_not_is_silent() {
+    let input = pslg::shape("letter_a").input;
+    let (_, warnings) = engine("pzq25S1Q", &input, &Hooks::default()).unwrap();
+    assert!(
+        warnings.len() == 1 && warnings[0].contains("S budget of 1 Steiner points"),
+        "{warnings:?}"
+    );
+    let (_, warnings) = engine("pzq25S1000000Q", &input, &Hooks::default()).unwrap();
+    assert!(warnings.is_empty(), "{warnings:?}");
+}

@@ -15,7 +15,7 @@ from typing import Callable, Optional
 import numpy as np
 
 from ._library import CTriangulateIO, Library, ProgressCallback, UnsuitableCallback, load_library
-from .report import Report, Switches, TriangulateWarning, budget_shortfall, print_notes, set_last_report
+from .report import Report, TriangulateWarning, print_notes, set_last_report
 from .triangulateio import TriangulateIO, free_c, from_c, to_c
 
 #: ``unsuitable(x1, y1, x2, y2, x3, y3, area) -> bool``: the corners of a triangle (counter-
@@ -119,7 +119,7 @@ def run(
     lib = library if library is not None else load_library()
     set_last_report(None)
     out, vorout, text = _call(lib, switches, tio, unsuitable, progress)
-    _report(lib, switches, tio, text, out)
+    _report(switches, text)
     return out, vorout
 
 
@@ -165,42 +165,17 @@ def _call(
             free_c(c_vorout, lib.free)
 
 
-def _report(lib: Library, switches: str, tio: TriangulateIO, text: str, out: TriangulateIO) -> None:
+def _report(switches: str, text: str) -> None:
     """Sorts what the call said besides its mesh, prints the notes with ``V`` and warns once of
-    the problems (see :mod:`triangle_rs.report`)."""
-    parsed = Switches(switches) if ("S" in switches or "V" in switches) else None
+    the problems (see :mod:`triangle_rs.report`). ``V`` takes no number, so each one in the
+    switches is one level of verbosity."""
     report = Report(switches, text)
-    if parsed is not None and parsed.max_steiner is not None and not report.problems:
-        shortfall = _budget_problem(lib, switches, parsed, tio, out)
-        if shortfall is not None:
-            report = Report(switches, text, (shortfall,))
     set_last_report(report)
-    if parsed is not None and parsed.verbosity:
-        print_notes(report, parsed.verbosity)
+    verbosity = switches.count("V")
+    if verbosity:
+        print_notes(report, verbosity)
     if report.problems:
         _warn_at_caller(report.warning_message())
-
-
-def _budget_problem(lib: Library, switches: str, parsed: Switches, tio: TriangulateIO, out: TriangulateIO) -> Optional[str]:
-    """The ``S`` budget, when it stopped refinement short of ``q`` or ``a<area>``. The library
-    does not say whether it did (see the README), so: the mesh must miss a bound
-    (:func:`budget_shortfall`: some inputs keep small angles whatever the budget), and the
-    budget must have stopped refinement. The count of new vertices does not tell (refinement
-    deletes some of the vertices it inserted, which ``S`` counts, and crossing segments add
-    vertices it does not count), so the same call runs again with a budget of ``S + 1``: it
-    gives the same mesh exactly when the budget did not stop refinement. Not with ``u``, whose
-    test would be asked again: then a mesh with ``S`` new vertices or more is taken as stopped."""
-    shortfall = budget_shortfall(parsed, out.pointlist, out.trianglelist, out.segmentlist)
-    if shortfall is None or parsed.steiner_span is None:
-        return None
-    budget = parsed.max_steiner
-    if "u" in parsed.letters:
-        return shortfall if out.numberofpoints - tio.numberofpoints >= budget else None
-    start, end = parsed.steiner_span
-    more, _, _ = _call(lib, f"{switches[:start]}S{budget + 1}{switches[end:]}", tio)
-    if more.numberofpoints == out.numberofpoints and np.array_equal(more.pointlist, out.pointlist):
-        return None
-    return shortfall
 
 
 _PACKAGE_DIRECTORY = os.path.dirname(os.path.abspath(__file__)) + os.sep

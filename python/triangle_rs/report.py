@@ -2,7 +2,7 @@
 one per line), sorted into *notes* and *problems*.
 
 * **Notes** are what Triangle does silently under ``Q`` and tells only without it: a duplicate
-  vertex ignored, a segment whose two endpoints are one vertex skipped, a passing ``C`` check.
+  vertex ignored, a segment whose two endpoints are one vertex skipped.
   The mesh is the one asked for. They are never a Python warning: ``V`` in the switches prints
   them, counted (``VV``: every line), to stdout, and :func:`last_report` keeps them.
 * **Problems** change the result asked for: a quality bound not reached (an angle above the
@@ -21,13 +21,10 @@ import sys
 import threading
 from typing import Optional
 
-import numpy as np
-
 #: The notes' first words (everything else is a problem).
 DUPLICATE_VERTEX = "A duplicate vertex at ("
 COINCIDENT_SEGMENT = "Endpoints of segment "
-PASSING_CHECK = "Mesh check: the mesh appears to be consistent"
-NOTE_PREFIXES = (DUPLICATE_VERTEX, COINCIDENT_SEGMENT, PASSING_CHECK)
+NOTE_PREFIXES = (DUPLICATE_VERTEX, COINCIDENT_SEGMENT)
 
 
 class TriangulateWarning(RuntimeWarning):
@@ -40,13 +37,12 @@ class Report:
     library's, in order), sorted into :attr:`notes` and :attr:`problems`; :meth:`summary` counts
     the notes, one line per kind."""
 
-    __slots__ = ("switches", "_text", "_extra", "_problems", "_notes")
+    __slots__ = ("switches", "_text", "_problems", "_notes")
 
-    def __init__(self, switches: str, text: str, extra_problems: tuple[str, ...] = ()):
+    def __init__(self, switches: str, text: str):
         #: The switches of the call, as passed to the library.
         self.switches = switches
         self._text = text
-        self._extra = tuple(extra_problems)
         self._problems: Optional[tuple[str, ...]] = None
         self._notes: Optional[tuple[str, ...]] = None
 
@@ -57,10 +53,10 @@ class Report:
 
     @property
     def problems(self) -> tuple[str, ...]:
-        """What changed the result asked for: the text of the call's warning, one item a problem
-        (the library's lines, then what this package found, e.g. the ``S`` budget)."""
+        """What changed the result asked for: the text of the call's warning, one library line
+        a problem."""
         if self._problems is None:
-            self._problems = library_problems(self._text) + self._extra
+            self._problems = library_problems(self._text)
         return self._problems
 
     @property
@@ -97,7 +93,6 @@ class Report:
             lines.append(
                 f"{len(skipped):,} segments whose two endpoints are one vertex were skipped; the first: {skipped[0]}"
             )
-        lines += [line for line in notes if line.startswith(PASSING_CHECK)]
         return lines
 
     def warning_message(self) -> str:
@@ -168,130 +163,3 @@ def print_notes(report: Report, verbosity: int) -> None:
     lines = report.notes if verbosity > 1 else report.summary()
     if lines:
         sys.stdout.write("".join(f"  {line}\n" for line in lines))
-
-
-# --- The S budget -----------------------------------------------------------------------------------
-
-
-class Switches:
-    """What :func:`budget_shortfall` needs of a switch string, read as the library reads it:
-    ``q``, ``a`` and ``S`` take the number that follows (digits and dots, then an optional
-    exponent), ``o2`` is one switch, every other character a switch of its own."""
-
-    def __init__(self, switches: str):
-        self.letters: set[str] = set()
-        self.min_angle: Optional[float] = None
-        self.max_area: Optional[float] = None
-        self.max_steiner: Optional[int] = None
-        self.verbosity = 0
-        #: Where the last ``S`` and its number are in the string (``None``: no ``S``).
-        self.steiner_span: Optional[tuple[int, int]] = None
-        i = 0
-        while i < len(switches):
-            c = switches[i]
-            i += 1
-            if c in "qaS":
-                start = i - 1
-                value, i = _number(switches, i)
-                if c == "q":
-                    self.min_angle = 20.0 if value is None else value
-                elif c == "a" and value is not None:
-                    self.max_area = value
-                elif c == "S":
-                    self.max_steiner = int(value) if value is not None and value > 0 else 0
-                    self.steiner_span = (start, i)
-            elif c == "o" and switches[i : i + 1] == "2":
-                i += 1
-            elif c == "V":
-                self.verbosity += 1
-            self.letters.add(c)
-
-
-def _number(text: str, start: int) -> tuple[Optional[float], int]:
-    """The number after a switch letter at ``text[start:]`` and the index after it (``None``: no
-    number): the run of digits and dots, read to its longest decimal prefix, then an exponent
-    (``e``, optional sign, digits) if the whole run was decimal."""
-    end = start
-    while end < len(text) and (text[end].isdigit() or text[end] == "."):
-        end += 1
-    if end == start:
-        return None, start
-    run = text[start:end]
-    dot = run.find(".")
-    if dot < 0:
-        prefix = run
-    else:
-        digits = dot + 1
-        while digits < len(run) and run[digits].isdigit():
-            digits += 1
-        prefix = run[:digits]
-    if prefix == run and end < len(text) and text[end] in "eE":
-        k = end + 1
-        if k < len(text) and text[k] in "+-":
-            k += 1
-        digits_start = k
-        while k < len(text) and text[k].isdigit():
-            k += 1
-        if k > digits_start:
-            prefix, end = prefix + text[end:k], k
-    mantissa = prefix.split("e")[0].split("E")[0]
-    if not any(ch.isdigit() for ch in mantissa):
-        return 0.0, end
-    try:
-        return float(prefix), end
-    except ValueError:
-        return 0.0, end
-
-
-def budget_shortfall(switches: Switches, points: np.ndarray, triangles: np.ndarray, segments: np.ndarray) -> Optional[str]:
-    """With ``S`` and ``q`` or ``a<area>``: whether the mesh misses those bounds, said as a
-    problem (``None`` when it meets them, or there is no budget). The library does not say
-    whether the budget stopped refinement, so this looks at the mesh: triangles with an angle
-    below the minimum (except at a corner between two segments, which refinement never splits)
-    or an area above the maximum. Regional areas and the test of ``u`` are not checked."""
-    if switches.max_steiner is None or (switches.min_angle is None and switches.max_area is None):
-        return None
-    if len(triangles) == 0:
-        return None
-    corners = np.asarray(triangles)[:, :3].astype(np.int64)
-    a, b, c = (points[corners[:, k]] for k in range(3))
-    twice_area = np.abs((b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0]))
-    found = []
-    if switches.min_angle is not None and switches.min_angle > 0:
-        # Edge k is opposite corner k; the smallest angle is opposite the shortest edge, and its
-        # sine is twice the area over the product of the other two edges' lengths.
-        lengths = np.stack(
-            [np.hypot(*(b - c).T), np.hypot(*(c - a).T), np.hypot(*(a - b).T)], axis=1
-        )
-        shortest = np.argmin(lengths, axis=1)
-        rows = np.arange(len(corners))
-        others = lengths[rows, (shortest + 1) % 3] * lengths[rows, (shortest + 2) % 3]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            sine = np.clip(twice_area / others, 0.0, 1.0)
-        angle = np.degrees(np.arcsin(np.nan_to_num(sine)))
-        bad = angle < switches.min_angle - 1e-6
-        if np.any(bad) and len(segments):
-            # Corners between two segments: both edges at the corner of the smallest angle.
-            n = np.int64(len(points))
-            seg = np.sort(np.asarray(segments, dtype=np.int64), axis=1)
-            keys = np.unique(seg[:, 0] * n + seg[:, 1])
-            apex = corners[rows, shortest]
-            first, second = corners[rows, (shortest + 1) % 3], corners[rows, (shortest + 2) % 3]
-
-            def is_segment(u: np.ndarray, v: np.ndarray) -> np.ndarray:
-                return np.isin(np.minimum(u, v) * n + np.maximum(u, v), keys)
-
-            bad &= ~(is_segment(apex, first) & is_segment(apex, second))
-        count = int(np.count_nonzero(bad))
-        if count:
-            found.append(f"{count} triangle{'s have' if count > 1 else ' has'} an angle below {switches.min_angle:g}°")
-    if switches.max_area is not None:
-        count = int(np.count_nonzero(0.5 * twice_area > switches.max_area * (1 + 1e-12)))
-        if count:
-            found.append(f"{count} triangle{'s are' if count > 1 else ' is'} larger than the maximum area {switches.max_area:g}")
-    if not found:
-        return None
-    return (
-        f"The mesh falls short of the quality asked: {' and '.join(found)}; the S switch limits "
-        f"refinement to {switches.max_steiner} Steiner points (the mesh is valid)."
-    )

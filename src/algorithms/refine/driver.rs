@@ -144,13 +144,20 @@ pub fn refine<P: Predicates>(
     }
     // Only what the finished mesh still lacks is reported: refused splits that later ones made
     // unnecessary are not a shortfall.
-    let unsplit = if tally.skipped > 0 {
-        driver.refinement.unmet_bounds()
-    } else {
-        0
-    };
-    if unsplit > 0 {
-        warnings.push(Warning::PrecisionExhausted { unsplit });
+    if outcome == Outcome::UserBudget {
+        // The caller's own limit: said only where it left the mesh short of the bounds.
+        let unmet = driver.refinement.unmet_bounds();
+        if unmet > 0 {
+            warnings.push(Warning::BudgetSpent {
+                limit: quality.max_steiner.unwrap_or(0),
+                unmet,
+            });
+        }
+    } else if tally.skipped > 0 {
+        let unsplit = driver.refinement.unmet_bounds();
+        if unsplit > 0 {
+            warnings.push(Warning::PrecisionExhausted { unsplit });
+        }
     }
     if tally.kept_whole > 0 {
         warnings.push(Warning::SegmentsKeptWhole {

@@ -45,6 +45,14 @@ pub enum Warning {
         /// How many.
         unsplit: u64,
     },
+    /// The `S` budget stopped refinement with bad triangles (or, with `D`, encroached
+    /// subsegments) left.
+    BudgetSpent {
+        /// The budget: at most this many Steiner points.
+        limit: u64,
+        /// How many are left.
+        unmet: u64,
+    },
     /// Bad triangles left unsplit because that needs vertices on segments that `Y` keeps whole.
     SegmentsKeptWhole {
         /// How many.
@@ -73,6 +81,12 @@ impl fmt::Display for Warning {
                 "Refinement stopped after {steiner_points} Steiner points, far more than this input and its area bounds \
                  account for: some of its features are too thin for the minimum angle (the mesh is valid; \
                  the S switch sets a limit of your own)."
+            ),
+            Warning::BudgetSpent { limit, unmet } => write!(
+                f,
+                "The S budget of {limit} Steiner points was spent with {unmet} triangles or segments below the \
+                 bounds left; the mesh is valid but may have angles below the minimum or triangles above \
+                 the maximum area."
             ),
             Warning::PrecisionExhausted { unsplit } => write!(
                 f,

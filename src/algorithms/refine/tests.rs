@@ -112,6 +112,14 @@ fn warnings_read_as_they_always_have() {
              exhausted near some vertices. The mesh is valid but may have angles below the minimum there.",
         ),
         (
+            Warning::BudgetSpent {
+                limit: 5,
+                unmet: 12,
+            },
+            "The S budget of 5 Steiner points was spent with 12 triangles or segments below the bounds left; \
+             the mesh is valid but may have angles below the minimum or triangles above the maximum area.",
+        ),
+        (
             Warning::SegmentsKeptWhole { unsplit: 10 },
             "Refinement left 10 bad triangles unsplit: that needs new vertices on segments, which the Y \
              switch forbids. The mesh is valid but may have angles below the minimum or triangles above the \
