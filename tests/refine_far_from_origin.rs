@@ -28,10 +28,11 @@ const ANGLE_SLACK: f64 = 1e-9;
 
 type Point = [f64; 2];
 
-/// A program's run: whether it succeeded (within a time limit), and its stderr.
+/// A program's run: whether it succeeded (within a time limit), and what it printed (stdout,
+/// where the command-line programs print their warnings, as Triangle does, then stderr).
 struct Ran {
     ok: bool,
-    stderr: String,
+    printed: String,
 }
 
 fn run(program: &Path, dir: &Path, args: &[&str]) -> Ran {
@@ -44,7 +45,8 @@ fn run(program: &Path, dir: &Path, args: &[&str]) -> Ran {
         .unwrap_or_else(|e| panic!("run {}: {e}", program.display()));
     Ran {
         ok: output.status.success(),
-        stderr: String::from_utf8_lossy(&output.stderr).into_owned(),
+        printed: String::from_utf8_lossy(&output.stdout).into_owned()
+            + &String::from_utf8_lossy(&output.stderr),
     }
 }
 
@@ -271,7 +273,7 @@ fn compare(
     let theirs = run(reference, dirs[0].path(), &[&args_quiet[0], &args_quiet[1]]);
     let mine = run(&ours(), dirs[1].path(), &[&args_loud[0], &args_loud[1]]);
     let theirs_near = run(reference, dirs[2].path(), &[&args_quiet[0], &args_quiet[1]]);
-    assert!(mine.ok, "{context}: ours failed: {}", mine.stderr);
+    assert!(mine.ok, "{context}: ours failed: {}", mine.printed);
     let our_mesh = read_mesh(&dirs[1], output).unwrap_or_else(|| panic!("{context}: no output"));
     our_mesh.assert_valid(&context);
     let m = our_mesh.measures(origin);
@@ -290,7 +292,7 @@ fn compare(
             m.largest_area
         );
     }
-    let warned = mine.stderr.contains("arning");
+    let warned = mine.printed.contains("arning");
     if m.smallest_angle < theta - ANGLE_SLACK {
         assert!(
             warned,
@@ -392,7 +394,7 @@ fn points_too_close_for_their_doubles_get_a_valid_mesh_and_a_warning() {
     let dir = TempDir::new("far-warn");
     dir.write("x.node", &node_text(&points));
     let ran = run(&ours(), dir.path(), &["-q30", "x.node"]);
-    assert!(ran.ok, "{}", ran.stderr);
+    assert!(ran.ok, "{}", ran.printed);
     let mesh = read_mesh(&dir, "x.1").expect("output");
     mesh.assert_valid("side 100 at 1e15");
     let m = mesh.measures(lowest(&points));
@@ -402,9 +404,9 @@ fn points_too_close_for_their_doubles_get_a_valid_mesh_and_a_warning() {
         m.smallest_angle
     );
     assert!(
-        ran.stderr.contains("precision"),
+        ran.printed.contains("precision"),
         "no warning: {}",
-        ran.stderr
+        ran.printed
     );
 }
 

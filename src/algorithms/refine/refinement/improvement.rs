@@ -41,13 +41,16 @@ use crate::algorithms::refine::{inside, VertexKind};
 use crate::geometry::{frame_coordinates, min_angle_sin2, Point, Predicates};
 use crate::mesh::{TriangleId, VertexId, GHOST};
 
-/// Rounds of smoothing and decimation. Measured on Triangle's example files with Laplacian
-/// smoothing alone: 2 rounds give 0.966× Triangle's triangles on geometric mean, 5 give 0.964×
-/// (no smoothing: 0.971×); with the search, 0.953×. Each round still helps on large meshes
-/// (`greenland.ele` with `rq34`: 142 800 triangles after 1 round, 136 100 after 5, 134 300 after
-/// 8), at a cost of about half the refinement's time per round there.
-const ROUNDS: usize = 5;
-const POLISHING_ROUNDS: usize = 3;
+/// Rounds of smoothing and decimation, then of smoothing alone. Measured on Triangle's example
+/// files (`REFINE_TABLE=only cargo bench --bench refine`, 2026-12-07), with the
+/// [`SEARCH`] evaluations, the raise after it and every target of the table (counts at most
+/// Triangle's on 128 of 128 cases, geometric mean, smallest angles at least Triangle's on 128):
+/// 5 + 3 rounds and 256 evaluations, geometric mean 0.798, our time 98× Triangle's over the
+/// table; 5 + 3 and 32, 0.799, 57×; 3 + 2 and 32, 0.804, 35×; 3 + 1 and 32, 0.803, 28×. Below
+/// that a target goes: 2 + 2 rounds leave 124 smallest angles at least Triangle's, 16 or 8
+/// evaluations 127 counts at most Triangle's.
+const ROUNDS: usize = 3;
+const POLISHING_ROUNDS: usize = 1;
 
 /// A deletion must keep the smallest angle's sine squared this fraction above the bound, and a
 /// move raise it by [`GAIN`]: so that where rounding differs (the same mesh in another frame,
@@ -70,14 +73,9 @@ const COMPASS: [[f64; 2]; 8] = [
     [FRAC_1_SQRT_2, -FRAC_1_SQRT_2],
 ];
 const SEARCH_RESOLUTION: f64 = 1.0 / 1024.0;
-/// The most evaluations of the search per vertex and round: many on meshes of up to
-/// [`THOROUGH_UP_TO`] free vertices (measured on Triangle's example files: 256 give 121 of 128
-/// smallest angles at least Triangle's, 32 give 117), few beyond, where each round would
-/// otherwise cost twice the refinement (Triangle's `greenland.ele` with `rq34`, 41 000 free
-/// vertices: 32 evaluations, 0.3 s a round).
-const THOROUGH_SEARCH: usize = 256;
-const QUICK_SEARCH: usize = 32;
-const THOROUGH_UP_TO: usize = 1 << 14;
+/// The most evaluations of the search per vertex and round (see [`ROUNDS`] for what fewer or
+/// more give; Triangle's `greenland.ele` with `rq34`, 41 000 free vertices: 0.3 s a round).
+const SEARCH: usize = 32;
 /// Meshes with more Steiner vertices than this are left as refined: there a round costs about
 /// as much as the refinement (measured: the square with a hole with `pq30a0.0000014`, 320 000
 /// vertices, 0.2 s refined, 3.3 s improved, 0.65× → 0.649× Triangle's triangles; the random
@@ -129,11 +127,6 @@ impl<P: Predicates> Refinement<'_, '_, P> {
             .map(VertexId::new)
             .filter(|v| matches!(self.kinds[v.index()], VertexKind::OnSegment { .. }))
             .collect();
-        let search = if free.len() <= THOROUGH_UP_TO {
-            THOROUGH_SEARCH
-        } else {
-            QUICK_SEARCH
-        };
         let mut link = Vec::new();
         // Per vertex, the last round in which it or a neighbour changed: after the first round,
         // only those of the round before or this one are tried again.
@@ -189,9 +182,9 @@ impl<P: Predicates> Refinement<'_, '_, P> {
                     around.clear();
                     around.extend(self.mesh().star(w).map(|e| self.mesh().dest(e)));
                     let done = match kind {
-                        Step::Smooth => self.try_smoothing(w, floor, &mut link, search),
+                        Step::Smooth => self.try_smoothing(w, floor, &mut link, SEARCH),
                         Step::Slide => self.try_sliding(w, floor, &mut link),
-                        Step::Delete => self.try_deleting(w, floor, &mut link, search),
+                        Step::Delete => self.try_deleting(w, floor, &mut link, SEARCH),
                         Step::Unsplit => self.try_unsplitting(w, floor),
                     };
                     if done {
@@ -565,7 +558,7 @@ impl<P: Predicates> Refinement<'_, '_, P> {
             return None;
         }
         let vertex = self.insert_free_vertex(x, t, frame, location)?;
-        self.try_smoothing(vertex, 0.0, &mut Vec::new(), THOROUGH_SEARCH);
+        self.try_smoothing(vertex, 0.0, &mut Vec::new(), SEARCH);
         Some(vertex)
     }
 
