@@ -7,7 +7,8 @@
 //!   panic the boundary caught: the library's bug, whatever the input); a success must be a valid mesh
 //!   (corners in range, counter-clockwise by exact orientation, manifold, no two used vertices at
 //!   one place, every boundary edge a segment, every output segment an edge), with every input
-//!   segment present as a chain of output segments, and in-range Voronoi edges.
+//!   segment present as a chain of output segments, and in-range Voronoi edges; with `D`, truly
+//!   Delaunay by exact predicates unless the call warned why not.
 //! - [`read_files`]: every reader of Triangle's file formats on arbitrary text: an error or a
 //!   value, never a panic or a runaway allocation; a `.node` that reads writes back to the same.
 //! - [`parse_switches`]: `Options::parse` on arbitrary strings: an error or options that keep
@@ -17,6 +18,7 @@
 
 use super::common::checks::convex_hull;
 use super::common::pslg_checks::{segment_chains, MeshView};
+use super::common::quality::check_conforming_delaunay;
 use super::common::{ours_with, MeshInput, Triangulation};
 
 use triangle_rs::io::files;
@@ -216,6 +218,7 @@ fn zero_based_input(input: &MeshInput, base: i32) -> MeshInput {
 pub fn check(
     case: &Case,
     result: &Result<Triangulation, String>,
+    warning: &str,
     extreme: bool,
 ) -> Result<(), String> {
     let out = match result {
@@ -280,14 +283,37 @@ pub fn check(
         let zero = zero_based_input(&case.input, out.base);
         segment_chains(&zero, &mesh, o.convex_hull)?;
     }
+    // `D` is truly Delaunay (exact predicates: no vertex even a rounding inside a boundary
+    // edge's diametral circle), unless the call said why not (the precision of the doubles, a
+    // budget, the runaway limit), `Y` kept an encroached segment whole, or `X` gave up exactness.
+    if o.conforming_delaunay
+        && !extreme
+        && o.no_steiner_on_segments == 0
+        && !o.no_exact
+        && warning.is_empty()
+        && !mesh.triangles.is_empty()
+    {
+        check_conforming_delaunay(&mesh)?;
+    }
     Ok(())
+}
+
+/// The warnings of the last call on this thread (`triangulate_last_warning`).
+fn last_warning() -> String {
+    let text = triangle_rs::ffi::triangulate_last_warning();
+    // SAFETY: the library returns a NUL-terminated string that stays valid until the next call
+    // on this thread, and no call comes between.
+    unsafe { std::ffi::CStr::from_ptr(text) }
+        .to_string_lossy()
+        .into_owned()
 }
 
 /// Decodes `data`, runs it through the C ABI and panics on a broken rule.
 pub fn triangulate(data: &[u8], extreme: bool) {
     let case = decode(data, extreme);
     let result = ours_with(&case.switches, &case.input, case.switches.contains('v'));
-    if let Err(broken) = check(&case, &result, extreme) {
+    let warning = last_warning();
+    if let Err(broken) = check(&case, &result, &warning, extreme) {
         panic!(
             "switches {:?}, input {:?}: {broken}",
             case.switches, case.input
