@@ -543,6 +543,66 @@ fn the_steiner_budget_caps_new_vertices() {
     }
 }
 
+/// A mesh refined in a translated frame (coordinates a local origin makes finer than the
+/// caller's) is moved onto the caller's grid and made constrained Delaunay again there by
+/// flips. Regression: the flips were started from the moved vertices' own edges only, and an
+/// edge of a moved vertex's link, between two vertices that stayed, was left with the moved
+/// vertex just inside its circle (exact `incircle` 6·10^-19) where nothing refined after the
+/// move (an `S` budget spent, or no triangle left bad). Random equilateral triangles.
+#[test]
+fn a_mesh_moved_onto_the_callers_grid_is_constrained_delaunay() {
+    let triangle = |name: &str, points: [[f64; 2]; 3]| {
+        Pslg::new(
+            name.into(),
+            MeshInput {
+                segments: vec![[0, 1], [1, 2], [2, 0]],
+                ..MeshInput::from_points(points.to_vec())
+            },
+        )
+    };
+    let cases = [
+        (
+            triangle(
+                "equilateral triangle 253",
+                [
+                    [-2.109987920179091, 1.045952067118226],
+                    [-1.9918116177625265, 0.28727290672211053],
+                    [-1.3938643427459236, 0.7689561669382253],
+                ],
+            ),
+            ["pza0.02S14Q", "pza0.02S100000Q"].as_slice(),
+        ),
+        (
+            triangle(
+                "equilateral triangle 118",
+                [
+                    [-0.7188711251376675, -1.6054828902532614],
+                    [-0.09020338209043316, -1.953042123927352],
+                    [-0.10354212793243558, -1.2348202710715739],
+                ],
+            ),
+            ["pza0.005Q"].as_slice(),
+        ),
+        (
+            triangle(
+                "equilateral triangle 281",
+                [
+                    [3.3123959673810672, -1.686967787813352],
+                    [1.8745801853647688, -0.9837547730367702],
+                    [1.9844877413045556, -2.580546273613364],
+                ],
+            ),
+            ["pza0.02S100000Q"].as_slice(),
+        ),
+    ];
+    for (pslg, all_switches) in &cases {
+        for &switches in *all_switches {
+            let (out, _) = refined(pslg, switches);
+            checked(pslg, switches, &out, |_, _| {});
+        }
+    }
+}
+
 /// A refinement that never ends on its own (10^10 triangles), for the cancel tests.
 const ENDLESS: &str = "pza1e-10Q";
 

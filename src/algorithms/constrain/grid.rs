@@ -45,9 +45,25 @@ impl<P: Predicates> Constrainer<P> {
         }
         self.inserter.mesh_mut().replace_points(on_grid);
         // Lawson flips (no segment is flipped): exactly Delaunay again with the moved vertices.
+        // A moved vertex changes the circumcircles of the triangles around it, so both its
+        // edges and the edges of its link are checked (as `move_vertex` does): its edges alone
+        // missed a link edge between two vertices that stayed, which the move put a vertex
+        // just inside the circle of (a random equilateral triangle with `pa0.02S14`, whose
+        // budget ends refinement before any later split could flip it).
+        let mesh = self.inserter.mesh();
+        let mut edges = Vec::new();
         for v in moved {
-            self.settle(v);
+            for e in mesh.star(v) {
+                let (a, b) = (mesh.dest(e), mesh.apex(e));
+                if a != GHOST {
+                    edges.push((v, a));
+                    if b != GHOST {
+                        edges.push((a, b));
+                    }
+                }
+            }
         }
+        self.restore_delaunay(edges);
         true
     }
 
