@@ -20,8 +20,9 @@ impl Encroachment {
     /// Delaunay.
     pub(super) fn new(degrees: f64, conforming: bool) -> Self {
         let theta = degrees.clamp(0.0, 60.0).to_radians();
-        // With no angle bound the lens is empty: nothing encroaches, as in Triangle (only a
-        // segment hiding a new point from its triangle is split then).
+        // With no angle bound the lens is the narrowest one, of `FLAT_ANGLE`: only points within
+        // rounding of a subsegment encroach it, as in Triangle (otherwise only a segment hiding
+        // a new point from its triangle is split then).
         Encroachment {
             lens_cos2: (theta < std::f64::consts::FRAC_PI_4 && !conforming)
                 .then(|| (2.0 * theta).cos().powi(2)),
@@ -30,15 +31,22 @@ impl Encroachment {
 
     /// Whether `w` encroaches the subsegment from `pu` to `pv`: lies in its diametral lens
     /// (without `D`: the subsegment subtends at least 180° − 2θ at `w`, Shewchuk 2002 §3.2,
-    /// which inserts fewer vertices; with no angle bound, never), else strictly inside its
+    /// which inserts fewer vertices; at least 180° − [`FLAT_ANGLE`] whatever θ, so with no
+    /// angle bound only points within rounding of it or on it), else strictly inside its
     /// diametral circle.
     pub(super) fn encroaches(&self, pu: Point, pv: Point, w: Point) -> bool {
         let (a, b) = ([pu[0] - w[0], pu[1] - w[1]], [pv[0] - w[0], pv[1] - w[1]]);
         let dot = a[0] * b[0] + a[1] * b[1];
         match self.lens_cos2 {
             Some(cos2) => {
+                // The second test is the first one's for the lens of `FLAT_ANGLE`, where the
+                // first compares two numbers equal to within rounding: the tangent of the angle
+                // by which `w` misses a straight one is |a × b| / |a · b|.
+                let cross = a[0] * b[1] - a[1] * b[0];
                 dot < 0.0
-                    && dot * dot >= cos2 * (a[0] * a[0] + a[1] * a[1]) * (b[0] * b[0] + b[1] * b[1])
+                    && (dot * dot
+                        >= cos2 * (a[0] * a[0] + a[1] * a[1]) * (b[0] * b[0] + b[1] * b[1])
+                        || cross * cross <= FLAT_TAN2 * (dot * dot))
             }
             // Exactly: `D` promises every Voronoi vertex inside the triangulation.
             None => diametral_dot(pu, pv, w) < 0.0,
@@ -55,6 +63,32 @@ impl Encroachment {
         })
     }
 }
+
+/// The narrowest lens: a point at which a subsegment subtends at least 180° − `FLAT_ANGLE`
+/// (radians) encroaches it, whatever the angle bound (so with none, or one below half of
+/// this, the lens is this one). Such a point lies within rounding of the subsegment, or on it;
+/// inserted as a free vertex, it would make a triangle with an angle of almost 180° that
+/// refinement cannot mend. Measured on random equilateral triangles with `pu`: a right
+/// triangle standing on a subsegment has its circumcentre at the subsegment's midpoint, which
+/// rounding put just inside the domain, where the lens test of no angle (dot² ≥ |a|²·|b|²,
+/// two numbers equal to within rounding there) said no; the sliver left (area 10^-18) was
+/// bad, its split was blocked by the subsegment, whose split point, the rounded midpoint,
+/// was the free vertex's own point: refused, the precision warning. With `a` such a sliver
+/// meets the bound and stays (unless smoothing, which `S` and `u` leave out, moves the
+/// vertex). The subsegment is split instead, as Ruppert's rule splits it when a point
+/// encroaches.
+///
+/// 2^-26, about the square root of the unit roundoff: the lens test of no angle cannot tell a
+/// point that near a subsegment from one on it (at height h over the middle, in units of half
+/// the subsegment, its two sides differ by 4h² of themselves), and Triangle, observed, splits
+/// the segment where its new point lies within about 2^-27 of that (a circumcentre 5·10^-9
+/// over the middle of a base of length 2: the segment's midpoint; 10^-8: a free vertex).
+/// This lens, decided on the cross product, has that width without the noise. (On the random
+/// triangles, every rounded point it caught lay within 2^-44: a width of 2^-44 gives the same
+/// meshes.)
+const FLAT_ANGLE: f64 = 1.0 / (1u64 << 26) as f64;
+/// tan² [`FLAT_ANGLE`] (to within rounding: 2^-52).
+const FLAT_TAN2: f64 = FLAT_ANGLE * FLAT_ANGLE;
 
 /// The Bowyer–Watson cavity of a new point, found to tell which subsegments the point would
 /// encroach (its buffers are reused from point to point).
@@ -290,4 +324,52 @@ fn sharpest_corner(mesh: &Mesh, kinds: &[VertexKind], x: VertexId) -> Option<f64
         }
     }
     sharpest
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn with_no_angle_bound_only_points_within_the_flat_angle_encroach() {
+        let lens = Encroachment::new(0.0, false);
+        let (u, v) = ([0.0, 0.0], [1.0, 0.0]);
+        // Height h over the middle: the point misses a straight angle by about 4h.
+        let at = |h: f64| [0.5, h];
+        assert!(lens.encroaches(u, v, at(0.0)));
+        assert!(lens.encroaches(u, v, at(1e-17)));
+        assert!(lens.encroaches(u, v, at(-1e-17)));
+        assert!(lens.encroaches(u, v, at(FLAT_ANGLE / 8.0)));
+        assert!(!lens.encroaches(u, v, at(FLAT_ANGLE / 2.0)));
+        assert!(!lens.encroaches(u, v, at(1e-3)));
+        // Beyond an end the subsegment subtends no angle.
+        assert!(!lens.encroaches(u, v, [1.5, 1e-17]));
+        assert!(!lens.encroaches(u, v, [-0.5, 0.0]));
+    }
+
+    /// The report's case: a right triangle's circumcentre rounded onto the midpoint of a tilted
+    /// subsegment, where the lens test of no angle (dot² ≥ |a|²·|b|²) said no by rounding.
+    #[test]
+    fn a_rounded_midpoint_of_a_tilted_subsegment_encroaches_it() {
+        let (u, v) = (
+            [0.8877063386411908, -1.7064211995971514],
+            [0.4113453212579926, -1.5544995713882477],
+        );
+        let w = [0.6495258299495916, -1.6304603854926996];
+        assert!(Encroachment::new(0.0, false).encroaches(u, v, w));
+        assert!(Encroachment::new(20.0, false).encroaches(u, v, w));
+        assert!(Encroachment::new(0.0, true).encroaches(u, v, w));
+    }
+
+    /// The lens of an angle bound is the same as without the flat floor: the floor lies inside it.
+    #[test]
+    fn an_angle_bound_keeps_its_lens() {
+        let lens = Encroachment::new(20.0, false);
+        let (u, v) = ([0.0, 0.0], [1.0, 0.0]);
+        // The lens of 20°: the subsegment subtends at least 140°, at height tan(20°) / 2 over
+        // the middle.
+        let edge = 0.5 * 20f64.to_radians().tan();
+        assert!(lens.encroaches(u, v, [0.5, edge * 0.999]));
+        assert!(!lens.encroaches(u, v, [0.5, edge * 1.001]));
+    }
 }
