@@ -6,8 +6,12 @@
 //! pq30a<x>` on `.poly` files, `x` the largest power of two ≤ 1/1000 of the vertices' bounding
 //! box area; `rpq30 rpq34 rq34` on the meshes (`.ele`) that have a `.poly`, `rq30 rq34` on the
 //! others. Each case is first run by Debian's `triangle` program under a time limit of
-//! [`TRIANGLE_TIME_LIMIT`] (DNF when it does not finish); when it does, by Triangle's library and
-//! by ours on the same input, in this process (ours stops at [`OUR_TIME_LIMIT`]: DNF too).
+//! [`TRIANGLE_TIME_LIMIT`] (DNF when it does not finish) and by our engine, in this process
+//! (cancelled at [`OUR_TIME_LIMIT`]: DNF too); our counts and angles are from this run. Then the
+//! cases that Triangle finishes are timed (`crate::race`): ours (where it finished) and
+//! Triangle's library through their C ABIs, interleaved, the median of `TABLE_REPS` calls each
+//! (default 3), or each side's best of about [`BUDGET`] of calls where Triangle's call takes less
+//! than a millisecond; Triangle's counts and angles are from its last call.
 
 use std::collections::HashSet;
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -23,12 +27,18 @@ use common::examples::{data_dir, example_files, ExampleFile, Kind};
 use common::points::Point;
 use common::pslg_checks::MeshView;
 use common::quality::{area, engine, smallest_angle};
-use common::timing::{timed_call, Library};
+use common::timing::number_from_env;
+
+use crate::race::{self, geometric_mean, race};
 
 /// How long Debian's `triangle` program may take on a case before it counts as not finishing.
 pub const TRIANGLE_TIME_LIMIT: Duration = Duration::from_secs(10);
 /// How long our refinement may take before it is cancelled (and counts as not finishing).
 pub const OUR_TIME_LIMIT: Duration = Duration::from_secs(30);
+/// Short cases repeat each side until it has spent about this long (best call).
+pub const BUDGET: Duration = Duration::from_millis(20);
+/// A side's timed calls in one case stop once they have spent about this long (one at least).
+const MOST_TIME: Duration = Duration::from_secs(20);
 /// Our smallest angle counts as at least Triangle's within this many degrees (rounding).
 const ANGLE_SLACK: f64 = 1e-9;
 /// Two segment directions at a vertex are the same within this many radians.
@@ -48,6 +58,7 @@ struct Measure {
     triangles: usize,
     smallest_angle: f64,
     largest_area: f64,
+    /// The timed calls' median or best (see the module doc), else the one call's.
     time: Duration,
     /// Input angles kept unsplit (only measured with `Y`): (apex, two segment directions).
     kept: Vec<(Point, [f64; 2])>,
@@ -69,6 +80,8 @@ struct Row {
     bound: Option<f64>,
     theirs: Outcome,
     ours: Outcome,
+    /// How the times were taken (`best of 9/700`), when Triangle's were.
+    calls: Option<String>,
 }
 
 /// The switch sets (without `z` and `Q`) of `file`'s kind.
@@ -196,22 +209,43 @@ fn lost_angles<'m>(theirs: &'m Measure, ours: &Measure) -> Vec<&'m (Point, [f64;
         .collect()
 }
 
-fn run_triangle(file: &ExampleFile, switches: &str, scratch: &Path, keep: bool) -> Outcome {
+/// Triangle's outcome (and the calls' description) after timing both sides on a case `ours` has
+/// already run (its time becomes the timed calls').
+fn race_triangle(
+    file: &ExampleFile,
+    switches: &str,
+    scratch: &Path,
+    keep: bool,
+    ours: &mut Outcome,
+    (reps, budget): (usize, Duration),
+) -> (Outcome, Option<String>) {
     let Some(reference) = common::reference() else {
-        return Outcome::Failed("Triangle 1.6 is not installed".into());
+        return (
+            Outcome::Failed("Triangle 1.6 is not installed".into()),
+            None,
+        );
     };
     if !triangle_finishes(scratch, &file.name, switches) {
-        return Outcome::Dnf;
+        return (Outcome::Dnf, None);
     }
-    let (times, out) = timed_call(
-        Library::Triangle(reference),
+    let result = race(
         &format!("{switches}zQ"),
         &file.input,
+        matches!(ours, Outcome::Done(_)),
+        Some(reference),
+        reps,
+        budget,
+        MOST_TIME,
     );
-    match measure(&out, &file.input, times.wall, keep) {
+    if let (Outcome::Done(m), Some(side)) = (&mut *ours, &result.ours) {
+        m.time = side.time;
+    }
+    let theirs = result.theirs.as_ref().expect("Triangle ran");
+    let outcome = match measure(&theirs.mesh, &file.input, theirs.time, keep) {
         Ok(m) => Outcome::Done(m),
         Err(e) => Outcome::Failed(e),
-    }
+    };
+    (outcome, Some(result.calls()))
 }
 
 fn run_ours(file: &ExampleFile, switches: &str, keep: bool) -> Outcome {
@@ -236,10 +270,6 @@ fn run_ours(file: &ExampleFile, switches: &str, keep: bool) -> Outcome {
     }
 }
 
-fn ms(d: Duration) -> String {
-    format!("{:.1}", d.as_secs_f64() * 1e3)
-}
-
 impl Row {
     /// Both meshes, when both finished with triangles.
     fn both(&self) -> Option<(&Measure, &Measure)> {
@@ -256,17 +286,23 @@ impl Row {
             .map(|(t, o)| o.triangles as f64 / t.triangles as f64)
     }
 
+    /// Our time over Triangle's, when both finished with triangles.
+    fn time_ratio(&self) -> Option<f64> {
+        self.both()
+            .map(|(t, o)| o.time.as_secs_f64() / t.time.as_secs_f64())
+    }
+
     fn name(&self) -> String {
         format!("{} {}", self.file, self.switches)
     }
 
     fn print(&self) {
         let side = |o: &Outcome| match o {
-            Outcome::Done(m) if m.triangles == 0 => ("0".into(), "—".into(), ms(m.time)),
+            Outcome::Done(m) if m.triangles == 0 => ("0".into(), "—".into(), race::ms(m.time)),
             Outcome::Done(m) => (
                 m.triangles.to_string(),
                 format!("{:.4}", m.smallest_angle),
-                ms(m.time),
+                race::ms(m.time),
             ),
             Outcome::Dnf => ("DNF".into(), "".into(), "".into()),
             Outcome::Failed(e) => (format!("failed: {e}"), "".into(), "".into()),
@@ -288,9 +324,14 @@ impl Row {
             }
             _ => String::new(),
         };
+        let time_ratio = self
+            .time_ratio()
+            .map_or(String::new(), |r| format!("{r:.2}"));
         println!(
-            "| {} | {} | {t_count} | {o_count} | {ratio} | {t_angle} | {o_angle} | {largest} | {t_time} | {o_time} |",
-            self.file, self.switches
+            "| {} | {} | {t_count} | {o_count} | {ratio} | {t_angle} | {o_angle} | {largest} | {t_time} | {o_time} | {time_ratio} | {} |",
+            self.file,
+            self.switches,
+            self.calls.as_deref().unwrap_or("one call")
         );
     }
 }
@@ -298,6 +339,11 @@ impl Row {
 /// Prints the table and its summary.
 pub fn run(scope: Scope) {
     let dir = data_dir();
+    let (reps, budget) = if scope == Scope::Smoke {
+        (1, Duration::ZERO)
+    } else {
+        (number_from_env("TABLE_REPS", 3).max(1), BUDGET)
+    };
     let scratch =
         std::env::temp_dir().join(format!("triangle-rs-bench-table-{}", std::process::id()));
     std::fs::create_dir_all(&scratch).expect("a scratch directory");
@@ -321,15 +367,19 @@ pub fn run(scope: Scope) {
          did not finish); then Triangle's library and ours run it in this process (ours is \
          cancelled after {} s: DNF). Ratio: our triangle count / Triangle's. Smallest angle in \
          degrees. Largest area: with `a<x>`, each mesh's largest triangle area / x (≤ 1 is within \
-         the bound); otherwise our largest triangle area / Triangle's. Times in ms (one call \
-         each, wall clock).",
+         the bound); otherwise our largest triangle area / Triangle's. Times in ms, wall clock, \
+         through both C ABIs, interleaved: the median of {reps} call(s) each (TABLE_REPS), or \
+         each side's best of about {} ms of calls where Triangle's call takes < 1 ms (calls: \
+         ours/Triangle's; one call: ours alone, where Triangle does not finish); time ratio: \
+         ours / Triangle's.",
         TRIANGLE_TIME_LIMIT.as_secs(),
-        OUR_TIME_LIMIT.as_secs()
+        OUR_TIME_LIMIT.as_secs(),
+        budget.as_millis()
     );
     println!(
-        "| file | switches | Triangle tris | our tris | ratio | Triangle min angle | our min angle | largest area | Triangle ms | our ms |"
+        "| file | switches | Triangle tris | our tris | ratio | Triangle min angle | our min angle | largest area | Triangle ms | our ms | time ratio | calls |"
     );
-    println!("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|");
     let only = std::env::var("REFINE_TABLE_FILES").ok();
     let mut rows = Vec::new();
     for file in example_files(&dir) {
@@ -345,10 +395,14 @@ pub fn run(scope: Scope) {
                 continue;
             }
             let keep = switches.contains('Y');
+            let mut ours = run_ours(&file, &switches, keep);
+            let (theirs, calls) =
+                race_triangle(&file, &switches, &scratch, keep, &mut ours, (reps, budget));
             let row = Row {
                 bound: bound_of(&switches),
-                theirs: run_triangle(&file, &switches, &scratch, keep),
-                ours: run_ours(&file, &switches, keep),
+                theirs,
+                ours,
+                calls,
                 file: file.name.clone(),
                 switches,
             };
@@ -456,6 +510,7 @@ fn summary(rows: &[Row]) {
     for (r, ratio) in worst.iter().take(10) {
         println!("  - {}: {ratio:.3}", r.name());
     }
+    time_summary(&both);
     println!("- our smallest angle below Triangle's:");
     if below.is_empty() {
         println!("  - none");
@@ -501,5 +556,63 @@ fn summary(rows: &[Row]) {
         for line in ours_only {
             println!("  - {line}");
         }
+    }
+}
+
+/// The summary's lines on time: geometric means of the time ratios, how often ours is at most
+/// Triangle's where Triangle takes at least a millisecond, the sums, the worst ten.
+fn time_summary(both: &[(&Row, &Measure, &Measure)]) {
+    let long = |t: &Measure| t.time >= race::SHORT;
+    let ratio = |t: &Measure, o: &Measure| o.time.as_secs_f64() / t.time.as_secs_f64();
+    let ratios: Vec<f64> = both.iter().map(|(_, t, o)| ratio(t, o)).collect();
+    let pick = |want_long: bool| -> Vec<f64> {
+        both.iter()
+            .filter(|(_, t, _)| long(t) == want_long)
+            .map(|(_, t, o)| ratio(t, o))
+            .collect()
+    };
+    let (long_ratios, short_ratios) = (pick(true), pick(false));
+    let at_most = |r: &[f64]| r.iter().filter(|&&r| r <= 1.0).count();
+    let mean = |r: &[f64]| {
+        if r.is_empty() {
+            "—".to_string()
+        } else {
+            format!("{:.2}", geometric_mean(r))
+        }
+    };
+    let sum = |pick: fn(&(&Row, &Measure, &Measure)) -> Duration| {
+        both.iter().map(pick).sum::<Duration>().as_secs_f64()
+    };
+    println!(
+        "- time ours / Triangle's on the {} cases where both finish with triangles: geometric \
+         mean {}; where Triangle takes ≥ 1 ms: {} over {} cases, ours ≤ Triangle's on {}/{}; \
+         where it takes < 1 ms: {} over {} cases, ours ≤ Triangle's on {}/{}; sums of the \
+         times: ours {:.3} s, Triangle's {:.3} s",
+        both.len(),
+        mean(&ratios),
+        mean(&long_ratios),
+        long_ratios.len(),
+        at_most(&long_ratios),
+        long_ratios.len(),
+        mean(&short_ratios),
+        short_ratios.len(),
+        at_most(&short_ratios),
+        short_ratios.len(),
+        sum(|(_, _, o)| o.time),
+        sum(|(_, t, _)| t.time),
+    );
+    let mut worst: Vec<(&Row, f64, Duration, Duration)> = both
+        .iter()
+        .map(|(r, t, o)| (*r, ratio(t, o), o.time, t.time))
+        .collect();
+    worst.sort_by(|a, b| b.1.total_cmp(&a.1));
+    println!("- the 10 worst time ratios:");
+    for (r, ratio, ours, theirs) in worst.iter().take(10) {
+        println!(
+            "  - {}: {ratio:.1} ({} ms against {} ms)",
+            r.name(),
+            race::ms(*ours),
+            race::ms(*theirs)
+        );
     }
 }
