@@ -21,9 +21,11 @@ pub const SHORT: Duration = Duration::from_millis(1);
 /// The most calls of one side in a short case.
 pub const MOST_CALLS: usize = 2000;
 
-/// One side's result: its time (best or median), its number of calls, its last mesh.
+/// One side's result: its wall-clock and process CPU time (each the best or the median of its
+/// own samples), its number of calls, its last mesh.
 pub struct Side {
     pub time: Duration,
+    pub cpu: Duration,
     pub calls: usize,
     pub mesh: Triangulation,
 }
@@ -66,10 +68,12 @@ pub fn race(
         .flatten()
         .collect();
     let mut samples: Vec<Vec<Duration>> = vec![Vec::new(); libraries.len()];
+    let mut cpu: Vec<Vec<Duration>> = vec![Vec::new(); libraries.len()];
     let mut meshes: Vec<Option<Triangulation>> = vec![None; libraries.len()];
     let mut call = |k: usize, samples: &mut Vec<Vec<Duration>>| {
         let (times, mesh): (Times, Triangulation) = timed_call(libraries[k], switches, input);
         samples[k].push(times.wall);
+        cpu[k].push(times.cpu);
         meshes[k] = Some(mesh);
     };
     for k in 0..libraries.len() {
@@ -103,15 +107,23 @@ pub fn race(
             None => break,
         }
     }
-    let mut sides = samples.into_iter().zip(meshes).map(|(s, mesh)| Side {
-        calls: s.len(),
-        time: if best {
+    let statistic = |s: Vec<Duration>| {
+        if best {
             *s.iter().min().expect("one call")
         } else {
             lower_median(s)
-        },
-        mesh: mesh.expect("one call"),
-    });
+        }
+    };
+    let mut sides = samples
+        .into_iter()
+        .zip(cpu)
+        .zip(meshes)
+        .map(|((s, c), mesh)| Side {
+            calls: s.len(),
+            time: statistic(s),
+            cpu: statistic(c),
+            mesh: mesh.expect("one call"),
+        });
     let ours = if ours { sides.next() } else { None };
     let theirs = sides.next();
     Race { ours, theirs, best }

@@ -454,6 +454,8 @@ struct Row {
     ours: Measured,
     theirs_time: Duration,
     ours_time: Duration,
+    /// Process CPU time ours / Triangle's.
+    cpu_ratio: f64,
 }
 
 impl Row {
@@ -508,7 +510,8 @@ pub fn run(scope: Scope) {
     println!(
         "Size sweep{}: quality meshes of about 10^{} triangles (Triangle's count; h, A and n \
          calibrated by running Triangle), ours against Triangle 1.6 through their C ABIs in this \
-         process, interleaved; times in ms, the best of about {} ms of calls where Triangle's \
+         process, interleaved; times in ms (wall clock; the CPU time ratio is of the process \
+         CPU times), the best of about {} ms of calls where Triangle's \
          call takes < 1 ms, else the median of SWEEP_REPS calls (5; 3 at 10^5, 2 from 10^6, \
          the lower one of two; fewer where a side's calls would pass {} s); ratios ours / Triangle's; ρ the mean radius ratio \
          2·r_in/r_circ.",
@@ -531,9 +534,9 @@ pub fn run(scope: Scope) {
         .collect();
     println!("(calibration: {:.1} s)", start.elapsed().as_secs_f64());
     println!(
-        "| size | input | switches | Triangle tris | our tris | count ratio | Triangle ms | our ms | time ratio | calls (ours/Triangle's) | Triangle min angle | our min angle | Triangle ρ | our ρ |"
+        "| size | input | switches | Triangle tris | our tris | count ratio | Triangle ms | our ms | time ratio | CPU time ratio | calls (ours/Triangle's) | Triangle min angle | our min angle | Triangle ρ | our ρ |"
     );
-    println!("|---|---|---|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|");
+    println!("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|");
     let mut rows = Vec::new();
     let mut checking = Duration::ZERO;
     for (i, &exponent) in exponents.iter().enumerate() {
@@ -571,10 +574,11 @@ pub fn run(scope: Scope) {
                 theirs,
                 ours_time: o.time,
                 theirs_time: t.time,
+                cpu_ratio: o.cpu.as_secs_f64() / t.cpu.as_secs_f64(),
                 switches,
             };
             println!(
-                "| 10^{} | {} | {} | {} | {} | {:.3} | {} | {} | {:.2} | {} | {:.2} | {:.2} | {:.4} | {:.4} |",
+                "| 10^{} | {} | {} | {} | {} | {:.3} | {} | {} | {:.2} | {:.2} | {} | {:.2} | {:.2} | {:.4} | {:.4} |",
                 row.exponent,
                 row.name,
                 row.switches,
@@ -584,6 +588,7 @@ pub fn run(scope: Scope) {
                 ms(row.theirs_time),
                 ms(row.ours_time),
                 row.time_ratio(),
+                row.cpu_ratio,
                 result.calls(),
                 row.theirs.smallest_angle,
                 row.ours.smallest_angle,
@@ -596,12 +601,13 @@ pub fn run(scope: Scope) {
     println!();
     println!("Per size (time and count ratios ours / Triangle's):");
     println!(
-        "| size | rows | Triangle's counts | time ratio, geometric mean | worst time ratio | count ratio, geometric mean | mean ρ ours / Triangle's | our min angle ≥ Triangle's |"
+        "| size | rows | Triangle's counts | time ratio, geometric mean (CPU time) | worst time ratio | count ratio, geometric mean | mean ρ ours / Triangle's | our min angle ≥ Triangle's |"
     );
     println!("|---|---:|---|---:|---|---:|---|---:|");
     for &exponent in &exponents {
         let at: Vec<&Row> = rows.iter().filter(|r| r.exponent == exponent).collect();
         let times: Vec<f64> = at.iter().map(|r| r.time_ratio()).collect();
+        let cpu: Vec<f64> = at.iter().map(|r| r.cpu_ratio).collect();
         let counts: Vec<f64> = at.iter().map(|r| r.count_ratio()).collect();
         let worst = at
             .iter()
@@ -617,9 +623,10 @@ pub fn run(scope: Scope) {
             .filter(|r| r.ours.smallest_angle >= r.theirs.smallest_angle - 1e-9)
             .count();
         println!(
-            "| 10^{exponent} | {} | {lowest}–{highest} | {:.2} | {:.2} ({} {}) | {:.3} | {:.4} / {:.4} | {angles_kept}/{} |",
+            "| 10^{exponent} | {} | {lowest}–{highest} | {:.2} ({:.2}) | {:.2} ({} {}) | {:.3} | {:.4} / {:.4} | {angles_kept}/{} |",
             at.len(),
             geometric_mean(&times),
+            geometric_mean(&cpu),
             worst.time_ratio(),
             worst.name,
             worst.switches,

@@ -60,6 +60,8 @@ struct Measure {
     largest_area: f64,
     /// The timed calls' median or best (see the module doc), else the one call's.
     time: Duration,
+    /// The same of the process CPU time (the one call's wall-clock time when untimed).
+    cpu: Duration,
     /// Input angles kept unsplit (only measured with `Y`): (apex, two segment directions).
     kept: Vec<(Point, [f64; 2])>,
 }
@@ -137,11 +139,11 @@ fn triangle_finishes(scratch: &Path, file: &str, switches: &str) -> bool {
     status.is_ok_and(|s| s.success())
 }
 
-/// The measurements of a finished mesh (`time` its call's), or why it is no valid mesh.
+/// The measurements of a finished mesh (`time` and `cpu` its calls'), or why it is no valid mesh.
 fn measure(
     out: &Triangulation,
     input: &MeshInput,
-    time: Duration,
+    (time, cpu): (Duration, Duration),
     keep_check: bool,
 ) -> Result<Measure, String> {
     let mesh = MeshView::of(out)?;
@@ -158,6 +160,7 @@ fn measure(
         smallest_angle: smallest_angle(&mesh),
         largest_area,
         time,
+        cpu,
         kept: if keep_check {
             kept_input_angles(&mesh, input)
         } else {
@@ -239,9 +242,10 @@ fn race_triangle(
     );
     if let (Outcome::Done(m), Some(side)) = (&mut *ours, &result.ours) {
         m.time = side.time;
+        m.cpu = side.cpu;
     }
     let theirs = result.theirs.as_ref().expect("Triangle ran");
-    let outcome = match measure(&theirs.mesh, &file.input, theirs.time, keep) {
+    let outcome = match measure(&theirs.mesh, &file.input, (theirs.time, theirs.cpu), keep) {
         Ok(m) => Outcome::Done(m),
         Err(e) => Outcome::Failed(e),
     };
@@ -263,7 +267,7 @@ fn run_ours(file: &ExampleFile, switches: &str, keep: bool) -> Outcome {
         Err(_) => Outcome::Failed("panicked".into()),
         Ok(Err(e)) => Outcome::Failed(e),
         Ok(Ok(_)) if time >= OUR_TIME_LIMIT => Outcome::Dnf,
-        Ok(Ok((out, _warnings))) => match measure(&out, &file.input, time, keep) {
+        Ok(Ok((out, _warnings))) => match measure(&out, &file.input, (time, time), keep) {
             Ok(m) => Outcome::Done(m),
             Err(e) => Outcome::Failed(e),
         },
@@ -565,6 +569,10 @@ fn time_summary(both: &[(&Row, &Measure, &Measure)]) {
     let long = |t: &Measure| t.time >= race::SHORT;
     let ratio = |t: &Measure, o: &Measure| o.time.as_secs_f64() / t.time.as_secs_f64();
     let ratios: Vec<f64> = both.iter().map(|(_, t, o)| ratio(t, o)).collect();
+    let cpu_ratios: Vec<f64> = both
+        .iter()
+        .map(|(_, t, o)| o.cpu.as_secs_f64() / t.cpu.as_secs_f64())
+        .collect();
     let pick = |want_long: bool| -> Vec<f64> {
         both.iter()
             .filter(|(_, t, _)| long(t) == want_long)
@@ -585,11 +593,12 @@ fn time_summary(both: &[(&Row, &Measure, &Measure)]) {
     };
     println!(
         "- time ours / Triangle's on the {} cases where both finish with triangles: geometric \
-         mean {}; where Triangle takes ≥ 1 ms: {} over {} cases, ours ≤ Triangle's on {}/{}; \
+         mean {} (of the CPU times: {}); where Triangle takes ≥ 1 ms: {} over {} cases, ours ≤ Triangle's on {}/{}; \
          where it takes < 1 ms: {} over {} cases, ours ≤ Triangle's on {}/{}; sums of the \
          times: ours {:.3} s, Triangle's {:.3} s",
         both.len(),
         mean(&ratios),
+        mean(&cpu_ratios),
         mean(&long_ratios),
         long_ratios.len(),
         at_most(&long_ratios),
