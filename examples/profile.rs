@@ -7,11 +7,18 @@
 //! Mode `files` profiles the command-line program's file work on the Delaunay input in memory:
 //! writing its `.node` text, reading it back, and writing the `.ele` of its triangulation. Mode
 //! `order` times the default insertion order (Hilbert curve in random rounds) of those points,
-//! with the points gathered afterwards and carried through the sort.
+//! with the points gathered afterwards and carried through the sort. Mode `dist` triangulates
+//! (`Qz`) one of the distributions of the Delaunay benchmark (tests/common/points.rs,
+//! `distributions`), named by the fourth argument with `_` for spaces (`cargo run --release
+//! --example profile -- dist 1000000 1 kuzmin`).
 
 #[allow(dead_code)]
 #[path = "../tests/common/rng.rs"]
 mod rng;
+
+#[allow(dead_code)]
+#[path = "../tests/common/points.rs"]
+mod points;
 
 use std::time::Instant;
 
@@ -77,6 +84,15 @@ fn main() {
             }
             holes.extend([0.5, 0.5]);
             "pq30a0.0000014Q"
+        }
+        "dist" => {
+            let name = args.get(4).map_or("uniform", String::as_str);
+            let (_, generate) = points::distributions()
+                .into_iter()
+                .find(|(d, _)| d.replace(' ', "_") == name)
+                .unwrap_or_else(|| panic!("no distribution {name}"));
+            points.extend(generate(n, 0x5EED_0001).into_iter().flatten());
+            "Qz"
         }
         "grid" => {
             // A square grid of about `n` points: cocircular everywhere, so every cell's diagonal

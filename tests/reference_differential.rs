@@ -87,6 +87,24 @@ fn triangle_sets_match_on_uniform_points() {
     }
 }
 
+/// The benchmark's distributions (issue 38: Kuzmin's, a dense patch in a square, clusters of
+/// mixed spreads, ...), where the insertion order has to follow the points' density down many
+/// orders of magnitude: the triangle sets are Triangle's, on one thread (below the two-core
+/// threshold), on two where there are two cores, and in the order of `i`.
+#[test]
+fn triangle_sets_match_on_every_distribution() {
+    let Some(triangle) = reference() else { return };
+    for (name, generate) in points::distributions() {
+        for (n, switches) in [(5_000, "Q"), (20_000, "Qz"), (20_000, "Qi")] {
+            let input = MeshInput::from_points(generate(n, 38));
+            let theirs = triangle.triangulate(switches, &input);
+            let ours = ours(switches, &input).unwrap_or_else(|e| panic!("{n} {name}: {e}"));
+            assert!(theirs.counts.triangles > 0);
+            assert_same(&format!("{n} {name} points"), switches, &ours, &theirs);
+        }
+    }
+}
+
 /// Every switch of this slice, alone and combined, on small inputs in general position.
 const SWITCH_SETS: &[&str] = &[
     "Q", "Qz", "Qc", "Qcz", "Qe", "Qez", "Qn", "Qnz", "Qv", "Qvz", "Qzcenv", "Qcenv", "QB", "QcBe",

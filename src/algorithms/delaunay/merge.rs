@@ -333,28 +333,38 @@ impl<P: Predicates> Merger<P> {
 
         // The facing chains: left from lb counter-clockwise to lt, right from rb clockwise to rt.
         // For each chain edge, the real half-edge on the inner side, and the ghost slot to reuse.
+        // Where both tangents touch a half at one vertex (lb = lt: the other half's far points
+        // swallow all of this one's hull but that vertex, as Kuzmin's distribution does), its
+        // chain is the whole hull, once around.
         let mut free_slots: Vec<TriangleId> = Vec::new();
         let mut left_chain: Vec<(VertexId, EdgeId)> = Vec::new(); // (next vertex, real half-edge l→next)
         let mut v = lb;
-        while v != lt {
+        loop {
             let g = left_hull.ghost_out(v);
             let w = left_hull.succ(v);
             let ghost_half = half_edge(&self.mesh, g, w, v);
             left_chain.push((w, self.mesh.twin(ghost_half)));
             free_slots.push(g);
             v = w;
+            if v == lt {
+                break;
+            }
         }
         let mut right_chain: Vec<(VertexId, EdgeId)> = Vec::new(); // (next vertex, real half-edge next→r)
         let mut v = rb;
-        while v != rt {
+        loop {
             let g = right_hull.ghost_in(v);
             let w = right_hull.pred(v);
             let ghost_half = half_edge(&self.mesh, g, v, w);
             right_chain.push((w, self.mesh.twin(ghost_half)));
             free_slots.push(g);
             v = w;
+            if v == rt {
+                break;
+            }
         }
-        // Ghost half-edges that the two new ghosts attach to.
+        // Ghost half-edges that the two new ghosts attach to (none on a half whose chain is its
+        // whole hull: its ghosts all become zipped triangles, and the new ghosts meet).
         let g_in_lb = left_hull.ghost_in(lb);
         let inf_to_lb = half_edge(&self.mesh, g_in_lb, GHOST, lb);
         let g_out_rb = right_hull.ghost_out(rb);
@@ -363,6 +373,7 @@ impl<P: Predicates> Merger<P> {
         let inf_to_rt = half_edge(&self.mesh, g_in_rt, GHOST, rt);
         let g_out_lt = left_hull.ghost_out(lt);
         let lt_to_inf = half_edge(&self.mesh, g_out_lt, lt, GHOST);
+        let (left_whole, right_whole) = (lb == lt, rb == rt);
 
         // Zip. Each new triangle is (l, r, x) with slot 0 the base l→r.
         let (mut l, mut r) = (lb, rb);
@@ -412,20 +423,22 @@ impl<P: Predicates> Merger<P> {
         }
         debug_assert!(l == lt && r == rt);
         let top_ghost = self.mesh.add_triangle(lt, rt, GHOST);
-        // The bottom ghost (rb, lb, ∞): rb→lb, lb→∞, ∞→rb.
+        // The bottom ghost (rb, lb, ∞): rb→lb, lb→∞, ∞→rb; the top ghost (lt, rt, ∞): lt→rt,
+        // rt→∞, ∞→lt. Each chain has an edge, so a zipped triangle lies between them.
         let (bg, tg) = (bottom_ghost, top_ghost);
-        if below_half == EdgeId::NONE {
-            // No chain edges at all: the tangents coincide and the two ghosts face each other.
-            self.mesh.link(bg.edge(0), tg.edge(0));
+        self.mesh.link(tg.edge(0), below_half);
+        if left_whole {
+            self.mesh.link(bg.edge(1), tg.edge(2));
+        } else {
+            self.mesh.link(bg.edge(1), inf_to_lb);
+            self.mesh.link(tg.edge(2), lt_to_inf);
         }
-        self.mesh.link(bg.edge(1), inf_to_lb);
-        self.mesh.link(bg.edge(2), rb_to_inf);
-        // The top ghost (lt, rt, ∞): lt→rt, rt→∞, ∞→lt.
-        if below_half != EdgeId::NONE {
-            self.mesh.link(tg.edge(0), below_half);
+        if right_whole {
+            self.mesh.link(bg.edge(2), tg.edge(1));
+        } else {
+            self.mesh.link(bg.edge(2), rb_to_inf);
+            self.mesh.link(tg.edge(1), inf_to_rt);
         }
-        self.mesh.link(tg.edge(1), inf_to_rt);
-        self.mesh.link(tg.edge(2), lt_to_inf);
         // Lawson's flips from the new edges until every edge is locally Delaunay; hull and
         // ghost edges stay (the hull is already convex).
         self.mesh
@@ -504,6 +517,22 @@ mod tests {
         }
         let real = m.triangle_count() as usize - ghosts;
         assert_eq!(real, 2 * distinct - 2 - ghosts);
+        // The boundary passes each of its vertices once and turns left there: it is the convex
+        // hull.
+        let mut hull = std::collections::HashMap::new();
+        for (x, y) in m.triangles().filter_map(|t| ghost_edge(m, t)) {
+            assert!(
+                hull.insert(y, x).is_none(),
+                "a vertex twice on the boundary"
+            );
+        }
+        for (&a, &b) in &hull {
+            let c = hull[&b];
+            assert!(
+                Exact::orient2d(m.point(a), m.point(b), m.point(c)) >= 0.0,
+                "not convex"
+            );
+        }
         assert_eq!(t.duplicates.len(), m.vertex_count() as usize - distinct);
         for &(v, u) in &t.duplicates {
             assert_eq!(m.point(VertexId::new(v)), m.point(VertexId::new(u)));
@@ -558,6 +587,24 @@ mod tests {
         }
         pts.push([0.0, 0.0]);
         check(pts);
+    }
+
+    /// Far points on one side swallow the other half's whole hull but one vertex (both tangents
+    /// touch it there, as on Kuzmin's distribution): that half's chain is its whole hull.
+    #[test]
+    fn a_half_whose_hull_all_faces_the_other() {
+        let mut s = 3;
+        let mut unit = || splitmix64(&mut s) as f64 / u64::MAX as f64;
+        let mut points: Vec<Point> = Vec::new();
+        for c in [-1.0, 1.0] {
+            for _ in 0..1000 {
+                points.push([c + 0.2 * (unit() - 0.5), 0.2 * (unit() - 0.5)]);
+            }
+        }
+        points.extend([[-1e4, 0.0], [1e4, 1e4], [1e4, -1e4]]);
+        check(points.clone());
+        // The mirror image: the right half is swallowed.
+        check(points.iter().map(|p| [-p[0], p[1]]).collect());
     }
 
     #[test]
