@@ -116,7 +116,7 @@ def triangulate(
     """
     if isinstance(first, str) and isinstance(second, TriangulateIO):
         return core.triangulate(first, second, unsuitable=unsuitable, progress=progress)
-    if isinstance(first, Mapping) and isinstance(second, str):
+    if (type(first) is dict or isinstance(first, Mapping)) and isinstance(second, str):
         return compat.triangulate(first, second, unsuitable=unsuitable, progress=progress)
     raise TypeError(
         "triangulate takes (switches: str, tio: TriangulateIO) or (tri: dict, opts: str = ''), "

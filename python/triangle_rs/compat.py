@@ -8,8 +8,8 @@ from typing import Any, Mapping, Optional
 
 import numpy as np
 
-from .core import Progress, Unsuitable, run
-from .triangulateio import FIELDS, TriangulateIO
+from .core import Progress, Unsuitable, run_arrays
+from .triangulateio import _EMPTY, FIELDS, TriangulateIO, normalize, output_reader
 
 #: The PyPI package's dictionary keys for the C struct's fields.
 KEYS: dict[str, str] = {
@@ -28,6 +28,17 @@ KEYS: dict[str, str] = {
     "edge_markers": "edgemarkerlist",
 }
 _FIELD_TO_KEY = {field: key for key, field in KEYS.items()}
+#: A field's position in ``FIELDS``: the order inputs are converted and checked in.
+_FIELD_ORDER = {field: k for k, field in enumerate(FIELDS)}
+#: A key's position in the output dictionary.
+_KEY_ORDER = {key: k for k, key in enumerate(KEYS)}
+#: The output struct read straight into the output dictionary: its keys, in its order, every
+#: array 2-D (markers and areas (n, 1), as the PyPI package returns them).
+_DICT_READER = output_reader(_FIELD_TO_KEY, flat_as_column=True)
+#: What `delaunay`, `convex_hull` and `voronoi` return.
+_TRIANGLES = output_reader({"trianglelist": "trianglelist"})
+_SEGMENTS = output_reader({"segmentlist": "segmentlist"})
+_VORONOI = output_reader({"pointlist": "pointlist", "edgelist": "edgelist", "normlist": "normlist"})
 
 
 def to_dict(tio: TriangulateIO) -> dict[str, np.ndarray]:
@@ -45,12 +56,28 @@ def to_dict(tio: TriangulateIO) -> dict[str, np.ndarray]:
 def from_dict(tri: Mapping[str, Any]) -> TriangulateIO:
     """A ``TriangulateIO`` from the PyPI package's input dictionary. An unknown key raises
     ``KeyError``, as the PyPI package does."""
+    return TriangulateIO._from_arrays(_dict_arrays(tri))
+
+
+def _dict_arrays(tri: Mapping[str, Any]) -> dict[str, np.ndarray]:
+    """The input dictionary's arrays, converted (field name -> array, in the order of ``FIELDS``,
+    the keys given only): what ``TriangulateIO(**fields)`` would hold. An unknown key raises
+    ``KeyError`` before anything is converted."""
+    # Plain loops, not comprehensions: each comprehension is one more function call, and this
+    # runs on every call.
     fields = {}
+    last = -1
+    in_order = True
     for key, value in tri.items():
-        if key not in KEYS:
-            raise KeyError(key)
-        fields[KEYS[key]] = value
-    return TriangulateIO(**fields)
+        name = KEYS[key]
+        fields[name] = value
+        position = _FIELD_ORDER[name]
+        in_order = in_order and position > last
+        last = position
+    arrays = {}
+    for name in fields if in_order else sorted(fields, key=_FIELD_ORDER.__getitem__):
+        arrays[name] = normalize(name, fields[name])
+    return arrays
 
 
 def triangulate(
@@ -79,9 +106,30 @@ def triangulate(
         raise TypeError(f"opts must be a str, got {type(opts).__name__}")
     if unsuitable is not None and "u" not in opts:
         raise ValueError("an unsuitable callback is used only with the switch 'u': add it to opts")
-    tio = from_dict(tri)
-    out, _ = run("Qz" + opts, tio, unsuitable=unsuitable, progress=progress)
-    return to_dict(select_outputs(out, tio, opts))
+    arrays = _dict_arrays(tri)
+    out, _ = run_arrays("Qz" + opts, arrays, unsuitable=unsuitable, progress=progress, read=(_DICT_READER, None))
+    return _select_keys(out, arrays, opts)
+
+
+def _select_keys(out: dict[str, np.ndarray], tin: dict[str, np.ndarray], opts: str) -> dict[str, np.ndarray]:
+    """What :func:`select_outputs` keeps, on the output dictionary ``out`` (changed and
+    returned); ``tin`` is the input's arrays (field name -> array)."""
+    writes_polygon = "P" not in opts
+    if not (writes_polygon and ("p" in opts or "c" in opts)):
+        out.pop("segments", None)
+        out.pop("segment_markers", None)
+    if writes_polygon and "p" in opts:
+        added = False
+        for key, field in (("holes", "holelist"), ("regions", "regionlist")):
+            if key not in out and field in tin and tin[field].size:
+                out[key] = tin[field]  # the input's (Triangle hands its arrays back)
+                added = True
+        if added:
+            out = {key: out[key] for key in sorted(out, key=_KEY_ORDER.__getitem__)}
+    else:
+        out.pop("holes", None)
+        out.pop("regions", None)
+    return out
 
 
 def select_outputs(out: TriangulateIO, tin: TriangulateIO, opts: str) -> TriangulateIO:
@@ -106,8 +154,8 @@ def select_outputs(out: TriangulateIO, tin: TriangulateIO, opts: str) -> Triangu
     return out
 
 
-def _points(pts: Any) -> TriangulateIO:
-    return TriangulateIO(pointlist=np.asarray(pts, dtype=np.float64))
+def _points(pts: Any) -> dict[str, np.ndarray]:
+    return {"pointlist": normalize("pointlist", np.asarray(pts, dtype=np.float64))}
 
 
 def delaunay(pts: Any) -> np.ndarray:
@@ -116,8 +164,8 @@ def delaunay(pts: Any) -> np.ndarray:
     >>> delaunay([[0, 0], [0, 1], [0.5, 0.5], [1, 1], [1, 0]]).shape
     (4, 3)
     """
-    out, _ = run("Qz", _points(pts))
-    return out.trianglelist
+    out, _ = run_arrays("Qz", _points(pts), read=(_TRIANGLES, None))
+    return out.get("trianglelist", _EMPTY["trianglelist"])
 
 
 def convex_hull(pts: Any) -> np.ndarray:
@@ -126,8 +174,8 @@ def convex_hull(pts: Any) -> np.ndarray:
     >>> convex_hull([[0, 0], [0, 1], [1, 1], [1, 0]]).shape
     (4, 2)
     """
-    out, _ = run("Qzc", _points(pts))
-    return out.segmentlist
+    out, _ = run_arrays("Qzc", _points(pts), read=(_SEGMENTS, None))
+    return out.get("segmentlist", _EMPTY["segmentlist"])
 
 
 def voronoi(pts: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -141,7 +189,8 @@ def voronoi(pts: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     >>> vertices.shape, edges.shape, ray_origins.shape, ray_directions.shape
     ((4, 2), (4, 2), (4,), (4, 2))
     """
-    _, vorout = run("Qzv", _points(pts))
-    edges = vorout.edgelist
+    _, vorout = run_arrays("Qzv", _points(pts), read=(None, _VORONOI))
+    edges = vorout.get("edgelist", _EMPTY["edgelist"])
     finite = edges[:, 1] != -1
-    return vorout.pointlist, edges[finite], edges[~finite][:, 0], vorout.normlist[~finite]
+    vertices = vorout.get("pointlist", _EMPTY["pointlist"])
+    return vertices, edges[finite], edges[~finite][:, 0], vorout.get("normlist", _EMPTY["normlist"])[~finite]

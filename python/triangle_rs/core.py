@@ -6,6 +6,8 @@ from __future__ import annotations
 
 import ctypes
 import os
+import queue
+import signal
 import sys
 import threading
 import time
@@ -16,7 +18,19 @@ import numpy as np
 
 from ._library import CTriangulateIO, Library, ProgressCallback, UnsuitableCallback, load_library
 from .report import Report, TriangulateWarning, print_notes, set_last_report
-from .triangulateio import TriangulateIO, free_c, from_c, to_c
+from .report import _last as _last_report
+from .triangulateio import (
+    FIELD_READER,
+    OutputReader,
+    TriangulateIO,
+    input_arrays,
+    input_struct,
+    read_output,
+    read_values,
+    release_outputs,
+    release_values,
+    struct_values,
+)
 
 #: ``unsuitable(x1, y1, x2, y2, x3, y3, area) -> bool``: the corners of a triangle (counter-
 #: clockwise) and its area; ``True`` asks for the triangle to be split (switch ``u``).
@@ -30,16 +44,20 @@ Progress = Callable[[str, int, int], None]
 #: The phases of a call, in the order they run.
 PHASES = ("delaunay", "segments", "refinement", "output")
 
-# Starting the worker thread that makes a call interruptible costs about a millisecond, more than
-# a small triangulation takes. So only calls that can run long use it: those that refine (the
-# library polls the cancel flag while refining) and those with large inputs.
+# Running a call in the worker thread that makes it interruptible costs tens of microseconds
+# (handing it over and waking the waiting thread), more than a small triangulation takes. So only
+# calls that can run long use it: those that refine (the library polls the cancel flag while
+# refining) and those with large inputs.
 _REFINING_SWITCHES = frozenset("qauDL")
 _LARGE_INPUT_POINTS = 50_000
 
 # How often the waiting main thread wakes up to let Python run its signal handlers (Ctrl-C) while
-# the library works in another thread. Waking up costs nothing measurable; the call itself returns
-# as soon as the library does.
-_INTERRUPT_POLL_SECONDS = 0.1
+# the library works in another thread. A signal that the kernel delivers to the main thread wakes
+# it at once; one delivered to another thread (numpy's BLAS threads do not block signals) waits
+# for this poll, and two signals that wait together are handled in the order of their numbers.
+# Waking up 100 times a second costs nothing measurable; the call itself returns as soon as the
+# library does.
+_INTERRUPT_POLL_SECONDS = 0.01
 
 
 class TriangulateError(ValueError, RuntimeError):
@@ -109,7 +127,8 @@ def run(
     library: Optional[Library] = None,
     progress: "Progress | bool | None" = None,
 ) -> tuple[TriangulateIO, TriangulateIO]:
-    """The raw call: ``switches`` as given (no ``z`` added). Every API ends here.
+    """The raw call: ``switches`` as given (no ``z`` added). Every API ends here (or in
+    :func:`run_arrays`, the same call on arrays).
 
     The library always gets ``Q`` (so it prints nothing itself), and what it says besides the
     mesh is sorted here (:mod:`triangle_rs.report`): notes (duplicate vertices ignored, ...) are
@@ -120,49 +139,129 @@ def run(
     set_last_report(None)
     out, vorout, text = _call(lib, switches, tio, unsuitable, progress)
     _report(switches, text)
+    return TriangulateIO._from_arrays(out), TriangulateIO._from_arrays(vorout)
+
+
+def run_arrays(
+    switches: str,
+    arrays: "dict[str, np.ndarray]",
+    *,
+    unsuitable: Optional[Unsuitable] = None,
+    progress: "Progress | bool | None" = None,
+    read: "tuple[OutputReader | None, OutputReader | None]" = (FIELD_READER, FIELD_READER),
+) -> tuple[dict[str, np.ndarray], dict[str, np.ndarray]]:
+    """:func:`run` without ``TriangulateIO`` objects, for the entry points that take and return
+    plain arrays: ``arrays`` maps field names to input arrays as
+    :func:`~triangle_rs.triangulateio.normalize` returns them (absent fields left out, in the
+    order of ``FIELDS``); returns the mesh and the Voronoi diagram as dictionaries of the arrays
+    present that ``read`` asks for (field names -> arrays by default; ``None`` reads nothing)."""
+    lib = load_library()
+    _last_report.report = None  # `set_last_report(None)`, inline (as below): every call runs this
+    out, vorout, text = _call(lib, switches, arrays, unsuitable, progress, read)
+    if text or "V" in switches:
+        _report(switches, text)
+    else:  # nothing to print or warn of: what `_report` does then
+        _last_report.report = Report(switches, text)
     return out, vorout
+
+
+#: switches -> (what the library gets, whether the call may run long): per process, not per call.
+_PARSED_SWITCHES: dict[str, tuple[bytes, bool]] = {}
+_PARSED_SWITCHES_KEPT = 256
+
+
+def _parse_switches(switches: str) -> tuple[bytes, bool]:
+    parsed = _PARSED_SWITCHES.get(switches)
+    if parsed is None:
+        encoded = encode_switches(switches if "Q" in switches else "Q" + switches)
+        parsed = (encoded, bool(_REFINING_SWITCHES.intersection(switches)))
+        if len(_PARSED_SWITCHES) >= _PARSED_SWITCHES_KEPT:
+            _PARSED_SWITCHES.clear()
+        _PARSED_SWITCHES[switches] = parsed
+    return parsed
 
 
 def _call(
     lib: Library,
     switches: str,
-    tio: TriangulateIO,
+    tio: "TriangulateIO | dict[str, np.ndarray]",
     unsuitable: Optional[Unsuitable] = None,
     progress: "Progress | bool | None" = None,
-) -> tuple[TriangulateIO, TriangulateIO, str]:
-    """One library call: the mesh, the Voronoi diagram and the warning lines (one text)."""
-    encoded = encode_switches(switches if "Q" in switches else "Q" + switches)
-    c_in, keep_alive = to_c(tio)
+    read: "tuple[OutputReader | None, OutputReader | None]" = (FIELD_READER, FIELD_READER),
+) -> tuple[dict[str, np.ndarray], dict[str, np.ndarray], str]:
+    """One library call: the mesh's and the Voronoi diagram's arrays (as ``read`` asks: field
+    name -> array, the fields present, by default) and the warning lines (one text). ``tio`` is a
+    ``TriangulateIO`` or its input arrays (as for :func:`run_arrays`). Every array the library
+    allocated is released, read or not."""
+    encoded, refines = _PARSED_SWITCHES.get(switches) or _parse_switches(switches)
+    arrays = input_arrays(tio) if isinstance(tio, TriangulateIO) else tio
+    c_in = input_struct(arrays)  # points into `arrays`, which this frame keeps alive
     c_out, c_vorout = CTriangulateIO(), CTriangulateIO()
     cancel = ctypes.c_int(0)
+    if unsuitable is None and not progress and not refines:
+        points = arrays.get("pointlist")
+        if points is None or len(points) < _LARGE_INPUT_POINTS:
+            # The common short call: no callback, on the calling thread (see `_ForeignCall`).
+            # Each output struct is unpacked once, for reading and releasing.
+            out_values = vorout_values = None
+            try:
+                code, message, text = lib.triangulate(encoded, c_in, c_out, c_vorout, None, cancel, None)
+                out_values = struct_values(c_out)
+                vorout_values = struct_values(c_vorout)
+                if code != 0:
+                    raise TriangulateError(message or f"triangulate failed (code {code})", code)
+                if not isinstance(text, str):  # a stand-in library's list of lines
+                    text = "\n".join(text)
+                read_out, read_vorout = read
+                return (
+                    read_values(out_values, read_out) if read_out is not None else {},
+                    read_values(vorout_values, read_vorout) if read_vorout is not None else {},
+                    text,
+                )
+            finally:
+                if vorout_values is None:  # the call raised: release whatever it left
+                    release_outputs(lib.free, c_out, c_vorout)
+                else:
+                    release_values(lib.free, out_values, vorout_values)
     callback_errors: list[BaseException] = []
     c_callback = _wrap_unsuitable(unsuitable, cancel, callback_errors) if unsuitable is not None else None
     display = _ProgressDisplay() if progress is True else None
     report = display.update if display is not None else (progress or None)
     c_progress = _wrap_progress(report, cancel, callback_errors) if report is not None else None
 
-    def call(_inputs: list = keep_alive) -> tuple[int, str, str]:
-        # `_inputs` holds the input arrays as long as the library may read them.
-        return lib.triangulate(encoded, c_in, c_out, c_vorout, c_callback, cancel, c_progress)
-
-    may_run_long = bool(_REFINING_SWITCHES & set(switches)) or c_in.numberofpoints >= _LARGE_INPUT_POINTS
-    foreign = _ForeignCall(call, interruptible=may_run_long)
+    points = arrays.get("pointlist")
+    may_run_long = refines or (points is not None and len(points) >= _LARGE_INPUT_POINTS)
+    foreign: Optional[_ForeignCall] = None
     try:
-        code, message, text = foreign.run_interruptibly(cancel)
+        if may_run_long:
+
+            def call(_inputs: dict = arrays) -> tuple[int, str, str]:
+                # `_inputs` holds the input arrays as long as the library may read them.
+                return lib.triangulate(encoded, c_in, c_out, c_vorout, c_callback, cancel, c_progress)
+
+            foreign = _ForeignCall(call)
+            code, message, text = foreign.run_interruptibly(cancel)
+        else:
+            # A short call runs on the calling thread (see `_ForeignCall`).
+            code, message, text = lib.triangulate(encoded, c_in, c_out, c_vorout, c_callback, cancel, c_progress)
         if callback_errors:
             raise callback_errors[0]
         if code != 0:
             raise TriangulateError(message or f"triangulate failed (code {code})", code)
         if not isinstance(text, str):  # a stand-in library's list of lines
             text = "\n".join(text)
-        return from_c(c_out), from_c(c_vorout), text
+        read_out, read_vorout = read
+        return (
+            read_output(c_out, read_out) if read_out is not None else {},
+            read_output(c_vorout, read_vorout) if read_vorout is not None else {},
+            text,
+        )
     finally:
         if display is not None:
             display.close()
         # `run_interruptibly` returns or raises only once the library is done with the structs.
-        if foreign.finished():
-            free_c(c_out, lib.free)
-            free_c(c_vorout, lib.free)
+        if foreign is None or foreign.finished():
+            release_outputs(lib.free, c_out, c_vorout)
 
 
 def _report(switches: str, text: str) -> None:
@@ -171,10 +270,9 @@ def _report(switches: str, text: str) -> None:
     switches is one level of verbosity."""
     report = Report(switches, text)
     set_last_report(report)
-    verbosity = switches.count("V")
-    if verbosity:
-        print_notes(report, verbosity)
-    if report.problems:
+    if "V" in switches:
+        print_notes(report, switches.count("V"))
+    if text and report.problems:
         _warn_at_caller(report.warning_message())
 
 
@@ -282,6 +380,104 @@ class _ProgressDisplay:
             self._phase = None
 
 
+#: Signals a thread raises by its own faults: the kernel delivers them to that thread, and
+#: blocking them would only make the process die without a report (faulthandler's).
+_FAULT_SIGNALS = frozenset(
+    getattr(signal, name)
+    for name in ("SIGSEGV", "SIGBUS", "SIGFPE", "SIGILL", "SIGTRAP", "SIGABRT", "SIGSYS")
+    if hasattr(signal, name)
+)
+
+
+def _block_outside_signals() -> None:
+    """In a worker thread: blocks the signals that come from outside (Ctrl-C's SIGINT, SIGTERM,
+    SIGUSR1, ...), so that the kernel delivers them to the main thread. Python runs their
+    handlers there anyway, but only when that thread is interrupted: a signal delivered to the
+    worker would wait for the main thread's next poll, and two such signals would be handled
+    together, in the order of their numbers rather than of their arrival."""
+    if hasattr(signal, "pthread_sigmask"):
+        signal.pthread_sigmask(signal.SIG_BLOCK, set(signal.valid_signals()) - _FAULT_SIGNALS)
+
+
+def _with_outside_signals_blocked(function: Callable[[], None]) -> None:
+    _block_outside_signals()
+    function()
+
+
+class _Worker:
+    """The thread that runs the main thread's interruptible calls (see :class:`_ForeignCall`):
+    started by the first one and kept for the process, a daemon waiting for the next call.
+    Starting a thread for every call costs ~75 µs; handing a call to a waiting thread ~20 µs.
+    It runs one call at a time: :meth:`submit` says when it is busy. After ``os.fork`` the child
+    makes its own (the parent's thread does not exist there)."""
+
+    def __init__(self) -> None:
+        self._calls: "queue.SimpleQueue[tuple[Callable[[Callable[[], None]], None], Callable[[], None]]]" = queue.SimpleQueue()
+        # Held from `submit` until the call is done (released by the call through `idle`).
+        self._busy = threading.Lock()
+        self._thread = threading.Thread(target=self._serve, name="triangle_rs-worker", daemon=True)
+        self._thread.start()
+
+    def _serve(self) -> None:
+        _block_outside_signals()
+        while True:
+            call, idle = self._calls.get()
+            try:
+                call(idle)
+            except BaseException:  # noqa: BLE001 - pragma: no cover - the call keeps its errors
+                pass
+
+    def submit(self, call: Callable[[Callable[[], None]], None]) -> bool:
+        """Runs ``call(idle)`` in the thread, unless it is busy (then returns False); ``call``
+        calls ``idle()`` once it no longer needs the thread."""
+        if not self._busy.acquire(blocking=False):
+            return False
+        once = threading.Lock()
+
+        def idle() -> None:
+            if once.acquire(blocking=False):  # the first of the call and `submit` frees the thread
+                self._busy.release()
+
+        try:
+            if not self._thread.is_alive():  # pragma: no cover - it never returns; be safe anyway
+                idle()
+                return False
+            self._calls.put((call, idle))
+        except BaseException:
+            # E.g. Ctrl-C around `put`: the thread is free again (a call queued all the same finds
+            # itself never started, as the caller marks it, and returns at once).
+            idle()
+            raise
+        return True
+
+
+_the_worker: Optional[_Worker] = None
+_worker_lock = threading.Lock()
+
+
+def _worker() -> _Worker:
+    """The process's :class:`_Worker`, started on first use."""
+    global _the_worker
+    worker = _the_worker
+    if worker is None:
+        with _worker_lock:
+            if _the_worker is None:
+                _the_worker = _Worker()
+            worker = _the_worker
+    return worker
+
+
+def _forget_worker() -> None:
+    """In a child made by ``os.fork``: the parent's worker thread is not there."""
+    global _the_worker, _worker_lock
+    _the_worker = None
+    _worker_lock = threading.Lock()
+
+
+if hasattr(os, "register_at_fork"):
+    os.register_at_fork(after_in_child=_forget_worker)
+
+
 class _ForeignCall:
     """One library call that Ctrl-C can stop, and that no exception leaves running.
 
@@ -296,7 +492,7 @@ class _ForeignCall:
     Completion is a plain attribute that the worker sets, not ``Thread.is_alive()``, which an
     interrupted ``join`` leaves false on Python 3.11 while the thread still runs. Off the main
     thread, or when the call is not ``interruptible`` (short calls), the call simply runs on the
-    calling thread.
+    calling thread. The worker is the process's :class:`_Worker`, kept between calls.
     """
 
     _PENDING, _RUNNING, _DONE, _NEVER_STARTED = range(4)
@@ -316,10 +512,15 @@ class _ForeignCall:
         """True once the library cannot touch the call's structs any more."""
         return self._state in (self._DONE, self._NEVER_STARTED)
 
-    def _work(self) -> None:
+    def _work(self, idle: Optional[Callable[[], None]] = None) -> None:
+        """Runs the call (in the worker thread); ``idle`` tells the persistent worker that it is
+        free again, before the waiting thread is woken (so that its next call finds it free)."""
         with self._state_lock:
             if self._state == self._NEVER_STARTED:
-                return  # the caller gave up before this thread began: the library is never called
+                # The caller gave up before this thread began: the library is never called.
+                if idle is not None:
+                    idle()
+                return
             self._state = self._RUNNING
         try:
             self._result = self._function()
@@ -328,6 +529,8 @@ class _ForeignCall:
         finally:
             with self._state_lock:
                 self._state = self._DONE
+            if idle is not None:
+                idle()
             self._finished_signal.release()
 
     def run_interruptibly(self, cancel: ctypes.c_int) -> tuple[int, str]:
@@ -339,7 +542,15 @@ class _ForeignCall:
         self._finished_signal.acquire()
         pending: Optional[BaseException] = None
         try:
-            threading.Thread(target=self._work, name="triangle_rs-triangulate", daemon=True).start()
+            if not _worker().submit(self._work):
+                # The worker runs another call (this one comes from a signal handler run while
+                # the main thread waits for it): a thread of its own.
+                threading.Thread(
+                    target=_with_outside_signals_blocked,
+                    args=(self._work,),
+                    name="triangle_rs-triangulate",
+                    daemon=True,
+                ).start()
         except BaseException as error:  # noqa: BLE001 - e.g. Ctrl-C inside Thread.start()
             pending = error
             cancel.value = 1
@@ -347,13 +558,18 @@ class _ForeignCall:
                 if self._state == self._PENDING:
                     # The worker has not begun (and may never): make sure it never calls.
                     self._state = self._NEVER_STARTED
-        while not self.finished():
+        while True:
+            # The whole wait is inside `try`, its test and its loop included: a signal handler may
+            # run (and raise) at any call or backward jump, and the worker may already be in the
+            # library.
             try:
-                self._finished_signal.acquire(timeout=_INTERRUPT_POLL_SECONDS)
+                while not self.finished():
+                    self._finished_signal.acquire(timeout=_INTERRUPT_POLL_SECONDS)
+                break
             except BaseException as error:  # noqa: BLE001 - re-raised once the library returned
+                cancel.value = 1
                 if pending is None:
                     pending = error
-                cancel.value = 1
         if pending is not None:
             raise pending
         if self._error is not None:
