@@ -1,5 +1,5 @@
-//! Two-core Delaunay triangulation: split the points by a vertical line, triangulate the halves
-//! on two threads, and merge.
+//! Two-core Delaunay triangulation: split the points by a vertical or a horizontal line through
+//! their median (by count), triangulate the halves on two threads, and merge.
 //!
 //! The merge follows the divide-and-conquer scheme of Guibas and Stolfi (1985) and Dwyer (1987):
 //! find the lower and upper common tangents of the two convex hulls, fill the region between the
@@ -46,18 +46,18 @@ impl Half {
     }
 }
 
-/// Triangulates the points on one side of the split point `split` (lexicographically; its
-/// copies on the left) in a mesh with room for `capacity` triangle slots, numbered as in
-/// `points`; `None` when the side has fewer than three points or all of them collinear.
-/// `corners` is told where the mesh's corner array lies as soon as it exists.
+/// Triangulates the points on one side of `split` (its point's copies on the left) in a mesh
+/// with room for `capacity` triangle slots, numbered as in `points`; `None` when the side has
+/// fewer than three points or all of them collinear. `corners` is told where the mesh's corner
+/// array lies as soon as it exists.
 fn triangulate_half<P: Predicates>(
     points: &[Point],
-    split: Point,
+    split: Split,
     left: bool,
     capacity: usize,
     corners: impl FnOnce(Range<usize>),
 ) -> Option<Half> {
-    let on_side = |p: Point| (p[0] < split[0] || (p[0] == split[0] && p[1] <= split[1])) == left;
+    let on_side = |p: Point| split.is_left(p) == left;
     let ordered = order_where_in_room(points, on_side, capacity);
     corners(ordered.corners_extent());
     if ordered.sorted.len() < 3 {
@@ -90,17 +90,99 @@ fn prefault_corners_beyond(corners: &Range<usize>, slots: usize, keep_going: imp
     prefault_while(from..corners.end, keep_going);
 }
 
-/// A point near the lexicographic median: the median of an evenly spaced sample (the halves
-/// need not be equal, only both large; the result does not depend on the split).
-fn split_point(points: &[Point]) -> Point {
+/// Which line splits the points: the halves are the points before and after `at` in the
+/// lexicographic order of (x, y) for a vertical line, of (y, −x) for a horizontal one. (y, −x)
+/// are the coordinates turned a quarter clockwise, a rotation: the merge, whose decisions are
+/// orientations and in-circle tests, works in either frame unchanged.
+///
+/// The comparisons are written out rather than made on the turned point `[p[1], -p[0]]`: with
+/// rustc 1.95.0 at opt-level 2 and 3, a `keep` closure building that array, inlined into the
+/// loop of the insertion order's words (`order::sorted_words`), made the loop's Hilbert keys
+/// wrong (safe code; the order stays a permutation, but a poor one: 7× the walks).
+#[derive(Clone, Copy, Debug)]
+struct Split {
+    at: Point,
+    horizontal: bool,
+}
+
+impl Split {
+    /// The coordinate across the split line (ascending from the left half to the right).
+    fn across(horizontal: bool, p: Point) -> f64 {
+        p[usize::from(horizontal)]
+    }
+
+    /// The coordinate along the split line (up to its sign).
+    fn along(horizontal: bool, p: Point) -> f64 {
+        p[usize::from(!horizontal)]
+    }
+
+    /// Whether `p` belongs to the left half (the split point's copies do).
+    fn is_left(&self, p: Point) -> bool {
+        let a = self.at;
+        if self.horizontal {
+            p[1] < a[1] || (p[1] == a[1] && p[0] >= a[0])
+        } else {
+            p[0] < a[0] || (p[0] == a[0] && p[1] <= a[1])
+        }
+    }
+
+    /// The lexicographic order of (x, y), or of (y, −x) for a horizontal line.
+    fn compare(horizontal: bool, p: &Point, q: &Point) -> std::cmp::Ordering {
+        if horizontal {
+            p[1].total_cmp(&q[1]).then(q[0].total_cmp(&p[0]))
+        } else {
+            p[0].total_cmp(&q[0]).then(p[1].total_cmp(&q[1]))
+        }
+    }
+}
+
+/// The split of the points: near the median of an evenly spaced sample (the halves need not be
+/// equal, only both large; the result does not depend on the split), by the line that crosses
+/// fewer Delaunay edges by the sample's estimate. A line through points of density ρ crosses
+/// about L·√ρ edges over a length L; among the sample's [`BAND`] points nearest the median on
+/// each axis, their spread along the line stands for L and the spread across it for their
+/// count over ρ·L, so (spread along / spread across) is the square of the estimate up to a
+/// common factor. The spread across is the smaller of the two on either side of the median:
+/// points piled on the median's line, or two lines of points on either side of it (the seam
+/// between them crosses an edge per point), count as none. On uniform points in a square the
+/// two lines are alike (the vertical one is kept); where the points crowd along a line (a line
+/// singularity, a few vertical lines of points) the line across them crosses far fewer edges.
+fn split_of(points: &[Point]) -> Split {
     const SAMPLE: usize = 4095;
+    /// Sample points in the band around the median whose spreads are measured.
+    const BAND: usize = 64;
     let step = (points.len() / SAMPLE).max(1);
     let mut sample: Vec<Point> = points.iter().step_by(step).copied().collect();
     let mid = sample.len() / 2;
-    let (_, &mut median, _) = sample.select_nth_unstable_by(mid, |p, q| {
-        p[0].total_cmp(&q[0]).then(p[1].total_cmp(&q[1]))
+    // For each line, the squared estimate and the median.
+    let choices = [false, true].map(|horizontal| {
+        let compare = |p: &Point, q: &Point| Split::compare(horizontal, p, q);
+        let (_, &mut at, _) = sample.select_nth_unstable_by(mid, compare);
+        // The band: the sample's points ranked from..=to around the median, moved there.
+        let band = (BAND / 2).min(mid);
+        let (from, to) = (mid - band, (mid + band).min(sample.len() - 1));
+        if from < mid {
+            sample[..mid].select_nth_unstable_by(from, compare);
+        }
+        if to > mid {
+            sample[mid..].select_nth_unstable_by(to - mid, compare);
+        }
+        let mut along = [f64::MAX, f64::MIN];
+        for &p in &sample[from..=to] {
+            let k = Split::along(horizontal, p);
+            along = [along[0].min(k), along[1].max(k)];
+        }
+        let median = Split::across(horizontal, at);
+        let across = |rank: usize| (Split::across(horizontal, sample[rank]) - median).abs();
+        let cost = (along[1] - along[0]) / across(from).min(across(to));
+        (if cost.is_nan() { f64::INFINITY } else { cost }, at)
     });
-    median
+    // The horizontal line only where it crosses clearly fewer edges (√2 fewer).
+    let horizontal = choices[1].0 < 0.5 * choices[0].0;
+    Split {
+        at: choices[usize::from(horizontal)].1,
+        horizontal,
+    }
 }
 
 /// Triangulates with two threads; gives the points back when the split does not give two proper
@@ -111,7 +193,7 @@ pub fn triangulate_two_halves<P: Predicates>(
 ) -> Result<Triangulation, Vec<Point>> {
     let n = points.len();
     // Every left point precedes every right point strictly (copies of the split point go left).
-    let split = split_point(&points);
+    let split = split_of(&points);
     // The left mesh gets room for both halves' triangles (2n - 4 slots, and the two ghosts of
     // the merge): the right half's are appended without reallocating. Each thread orders its
     // side straight from all the points.
@@ -172,6 +254,7 @@ pub fn triangulate_two_halves<P: Predicates>(
     mesh.append_on_two_threads(std::mem::take(&mut r.mesh));
     let mut merger = Merger::<P> {
         mesh,
+        horizontal: split.horizontal,
         _p: Default::default(),
     };
     merger.merge(right_start);
@@ -183,58 +266,62 @@ pub fn triangulate_two_halves<P: Predicates>(
     Ok(triangulation)
 }
 
-/// The hull of one half, read off its ghost triangles.
+/// The hull of one half, read off its ghost triangles: its vertices counter-clockwise, each
+/// with the ghost triangle of the hull edge leaving it. Positions in the ring stand for the
+/// vertices in the merge's walks (no map from vertex to neighbours: a hull may hold every
+/// point, as on a circle's arc).
 struct Hull {
-    /// Counter-clockwise successor and predecessor of each hull vertex (NONE elsewhere), and the
-    /// ghost triangle of the hull edge leaving (`ghost_out`) and entering (`ghost_in`) it.
-    succ: std::collections::HashMap<VertexId, (VertexId, VertexId, TriangleId, TriangleId)>,
+    ring: Vec<(VertexId, TriangleId)>,
 }
 
 impl Hull {
     /// Walks the ring of ghost triangles of the half in `triangles` (each ghost's neighbour
-    /// across its half-edge from the vertex at infinity is the next ghost around the hull), from
-    /// the first ghost in the range: O(hull) after that search, not a scan of the whole half.
+    /// across its half-edge from the vertex at infinity is the ghost of the next hull edge
+    /// counter-clockwise), from the first ghost in the range: O(hull) after that search, not a
+    /// scan of the whole half.
     fn read(mesh: &Mesh, triangles: std::ops::Range<u32>) -> Hull {
-        let mut succ = std::collections::HashMap::new();
         let slots = triangles.len();
         let first = triangles
             .map(TriangleId::new)
             .find(|&t| ghost_edge(mesh, t).is_some())
             .expect("a triangulated half has a hull");
+        let mut ring = Vec::new();
         let mut ghost = first;
         for _ in 0..slots {
             let c = mesh.triangle(ghost);
             let k = c.iter().position(|&v| v == GHOST).expect("a ghost");
-            // Hull edge y → x (the ghost's finite half-edge is x → y).
-            let (x, y) = (c[(k + 1) % 3], c[(k + 2) % 3]);
-            let none = (
-                VertexId::NONE,
-                VertexId::NONE,
-                TriangleId::NONE,
-                TriangleId::NONE,
-            );
-            let y_entry = succ.entry(y).or_insert(none);
-            (y_entry.0, y_entry.2) = (x, ghost);
-            let x_entry = succ.entry(x).or_insert(none);
-            (x_entry.1, x_entry.3) = (y, ghost);
+            // Hull edge y → x (the ghost's finite half-edge is x → y); the next ghost's edge
+            // starts at x.
+            ring.push((c[(k + 2) % 3], ghost));
             ghost = mesh.twin(ghost.edge(k as u32)).triangle();
             if ghost == first {
                 break;
             }
         }
-        Hull { succ }
+        Hull { ring }
     }
-    fn succ(&self, v: VertexId) -> VertexId {
-        self.succ[&v].0
+    fn vertex(&self, i: usize) -> VertexId {
+        self.ring[i].0
     }
-    fn pred(&self, v: VertexId) -> VertexId {
-        self.succ[&v].1
+    fn succ(&self, i: usize) -> usize {
+        if i + 1 == self.ring.len() {
+            0
+        } else {
+            i + 1
+        }
     }
-    fn ghost_out(&self, v: VertexId) -> TriangleId {
-        self.succ[&v].2
+    fn pred(&self, i: usize) -> usize {
+        if i == 0 {
+            self.ring.len() - 1
+        } else {
+            i - 1
+        }
     }
-    fn ghost_in(&self, v: VertexId) -> TriangleId {
-        self.succ[&v].3
+    fn ghost_out(&self, i: usize) -> TriangleId {
+        self.ring[i].1
+    }
+    fn ghost_in(&self, i: usize) -> TriangleId {
+        self.ring[self.pred(i)].1
     }
 }
 
@@ -256,6 +343,8 @@ fn half_edge(mesh: &Mesh, t: TriangleId, from: VertexId, to: VertexId) -> EdgeId
 
 struct Merger<P: Predicates> {
     mesh: Mesh,
+    /// The halves lie below and above a horizontal line (see [`Split`]).
+    horizontal: bool,
     _p: std::marker::PhantomData<P>,
 }
 
@@ -287,33 +376,30 @@ impl<P: Predicates> Merger<P> {
         let total = self.mesh.triangle_count();
         let left_hull = Hull::read(&self.mesh, 0..right_start.raw());
         let right_hull = Hull::read(&self.mesh, right_start.raw()..total);
-        let lexi_max = |h: &Hull| {
-            *h.succ
-                .keys()
-                .max_by(|&&a, &&b| {
-                    let (p, q) = (self.pt(a), self.pt(b));
-                    p[0].total_cmp(&q[0]).then(p[1].total_cmp(&q[1]))
-                })
-                .unwrap()
+        // The extreme points facing the other half, in the split's frame (ring positions).
+        let extreme = |h: &Hull, largest: bool| {
+            let order = |&a: &usize, &b: &usize| {
+                let (p, q) = (self.pt(h.vertex(a)), self.pt(h.vertex(b)));
+                Split::compare(self.horizontal, &p, &q)
+            };
+            let positions = 0..h.ring.len();
+            if largest {
+                positions.max_by(order)
+            } else {
+                positions.min_by(order)
+            }
+            .expect("a hull")
         };
-        let lexi_min = |h: &Hull| {
-            *h.succ
-                .keys()
-                .min_by(|&&a, &&b| {
-                    let (p, q) = (self.pt(a), self.pt(b));
-                    p[0].total_cmp(&q[0]).then(p[1].total_cmp(&q[1]))
-                })
-                .unwrap()
-        };
-        let (l0, r0) = (lexi_max(&left_hull), lexi_min(&right_hull));
+        let (l0, r0) = (extreme(&left_hull, true), extreme(&right_hull, false));
+        let (lv, rv) = (|i| left_hull.vertex(i), |i| right_hull.vertex(i));
 
         // Lower tangent lb → rb: every point on its left. Move l clockwise and r counter-clockwise
         // while a hull neighbour lies below.
         let (mut lb, mut rb) = (l0, r0);
         loop {
-            if self.below(lb, rb, left_hull.pred(lb)) {
+            if self.below(lv(lb), rv(rb), lv(left_hull.pred(lb))) {
                 lb = left_hull.pred(lb);
-            } else if self.below(lb, rb, right_hull.succ(rb)) {
+            } else if self.below(lv(lb), rv(rb), rv(right_hull.succ(rb))) {
                 rb = right_hull.succ(rb);
             } else {
                 break;
@@ -322,9 +408,9 @@ impl<P: Predicates> Merger<P> {
         // Upper tangent rt → lt.
         let (mut lt, mut rt) = (l0, r0);
         loop {
-            if self.below(rt, lt, left_hull.succ(lt)) {
+            if self.below(rv(rt), lv(lt), lv(left_hull.succ(lt))) {
                 lt = left_hull.succ(lt);
-            } else if self.below(rt, lt, right_hull.pred(rt)) {
+            } else if self.below(rv(rt), lv(lt), rv(right_hull.pred(rt))) {
                 rt = right_hull.pred(rt);
             } else {
                 break;
@@ -338,42 +424,39 @@ impl<P: Predicates> Merger<P> {
         // chain is the whole hull, once around.
         let mut free_slots: Vec<TriangleId> = Vec::new();
         let mut left_chain: Vec<(VertexId, EdgeId)> = Vec::new(); // (next vertex, real half-edge l→next)
-        let mut v = lb;
+        let mut i = lb;
         loop {
-            let g = left_hull.ghost_out(v);
-            let w = left_hull.succ(v);
-            let ghost_half = half_edge(&self.mesh, g, w, v);
-            left_chain.push((w, self.mesh.twin(ghost_half)));
+            let g = left_hull.ghost_out(i);
+            let w = left_hull.succ(i);
+            let ghost_half = half_edge(&self.mesh, g, lv(w), lv(i));
+            left_chain.push((lv(w), self.mesh.twin(ghost_half)));
             free_slots.push(g);
-            v = w;
-            if v == lt {
+            i = w;
+            if i == lt {
                 break;
             }
         }
         let mut right_chain: Vec<(VertexId, EdgeId)> = Vec::new(); // (next vertex, real half-edge next→r)
-        let mut v = rb;
+        let mut i = rb;
         loop {
-            let g = right_hull.ghost_in(v);
-            let w = right_hull.pred(v);
-            let ghost_half = half_edge(&self.mesh, g, v, w);
-            right_chain.push((w, self.mesh.twin(ghost_half)));
+            let g = right_hull.ghost_in(i);
+            let w = right_hull.pred(i);
+            let ghost_half = half_edge(&self.mesh, g, rv(i), rv(w));
+            right_chain.push((rv(w), self.mesh.twin(ghost_half)));
             free_slots.push(g);
-            v = w;
-            if v == rt {
+            i = w;
+            if i == rt {
                 break;
             }
         }
+        let (left_whole, right_whole) = (lb == lt, rb == rt);
         // Ghost half-edges that the two new ghosts attach to (none on a half whose chain is its
         // whole hull: its ghosts all become zipped triangles, and the new ghosts meet).
-        let g_in_lb = left_hull.ghost_in(lb);
-        let inf_to_lb = half_edge(&self.mesh, g_in_lb, GHOST, lb);
-        let g_out_rb = right_hull.ghost_out(rb);
-        let rb_to_inf = half_edge(&self.mesh, g_out_rb, rb, GHOST);
-        let g_in_rt = right_hull.ghost_in(rt);
-        let inf_to_rt = half_edge(&self.mesh, g_in_rt, GHOST, rt);
-        let g_out_lt = left_hull.ghost_out(lt);
-        let lt_to_inf = half_edge(&self.mesh, g_out_lt, lt, GHOST);
-        let (left_whole, right_whole) = (lb == lt, rb == rt);
+        let inf_to_lb = half_edge(&self.mesh, left_hull.ghost_in(lb), GHOST, lv(lb));
+        let rb_to_inf = half_edge(&self.mesh, right_hull.ghost_out(rb), rv(rb), GHOST);
+        let inf_to_rt = half_edge(&self.mesh, right_hull.ghost_in(rt), GHOST, rv(rt));
+        let lt_to_inf = half_edge(&self.mesh, left_hull.ghost_out(lt), lv(lt), GHOST);
+        let (lb, rb, lt, rt) = (lv(lb), rv(rb), lv(lt), rv(rt));
 
         // Zip. Each new triangle is (l, r, x) with slot 0 the base l→r.
         let (mut l, mut r) = (lb, rb);
@@ -587,6 +670,27 @@ mod tests {
         }
         pts.push([0.0, 0.0]);
         check(pts);
+    }
+
+    /// The split line: vertical on uniform points, horizontal across points crowding along a
+    /// vertical line or on a few vertical lines (one split per case also merged and checked).
+    #[test]
+    fn the_split_crosses_the_crowding() {
+        let square = uniform(30_000, 8);
+        assert!(!split_of(&square).horizontal);
+        let mut s = 4;
+        let mut unit = || splitmix64(&mut s) as f64 / u64::MAX as f64;
+        let singular: Vec<Point> = (0..30_000)
+            .map(|_| [1e-3 / (1e-3 + unit()), unit()])
+            .collect();
+        let lines: Vec<Point> = (0..30_000).map(|i| [(i % 4) as f64, unit()]).collect();
+        for points in [singular, lines] {
+            assert!(split_of(&points).horizontal);
+            check(points.clone());
+            // Turned a quarter: the crowding is across the other line.
+            let turned: Vec<Point> = points.iter().map(|p| [p[1], p[0]]).collect();
+            assert!(!split_of(&turned).horizontal);
+        }
     }
 
     /// Far points on one side swallow the other half's whole hull but one vertex (both tangents

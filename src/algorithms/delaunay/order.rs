@@ -498,16 +498,33 @@ fn order_crowded_cells(
 }
 
 /// Adds to `todo` the ranges (offset by `offset`) of the runs of more than [`CROWDED`]
-/// consecutive `words` equal from bit `low` up.
+/// consecutive `words` equal from bit `low` up (the words are sorted by those bits).
+///
+/// Words are compared [`CROWDED`]` / 2` apart: a run of more than [`CROWDED`] words holds two
+/// probes that far apart, equal, and only there is the run's extent looked for. Where no cell
+/// is crowded this reads one word in eight.
 fn crowded_runs(words: &[u64], low: u32, offset: usize, todo: &mut Vec<std::ops::Range<usize>>) {
-    let mut start = 0;
-    for i in 1..=words.len() {
-        if i == words.len() || words[i] >> low != words[start] >> low {
-            if i - start > CROWDED {
-                todo.push(offset + start..offset + i);
-            }
-            start = i;
+    const STRIDE: usize = CROWDED / 2;
+    let cell = |i: usize| words[i] >> low;
+    let mut probe = 0;
+    while probe + STRIDE < words.len() {
+        if cell(probe) != cell(probe + STRIDE) {
+            probe += STRIDE;
+            continue;
         }
+        let c = cell(probe);
+        let mut start = probe;
+        while start > 0 && cell(start - 1) == c {
+            start -= 1;
+        }
+        let mut end = probe + STRIDE + 1;
+        while end < words.len() && cell(end) == c {
+            end += 1;
+        }
+        if end - start > CROWDED {
+            todo.push(offset + start..offset + end);
+        }
+        probe = end;
     }
 }
 
