@@ -208,16 +208,7 @@ def _call(
                 code, message, text = lib.triangulate(encoded, c_in, c_out, c_vorout, None, cancel, None)
                 out_values = struct_values(c_out)
                 vorout_values = struct_values(c_vorout)
-                if code != 0:
-                    raise TriangulateError(message or f"triangulate failed (code {code})", code)
-                if not isinstance(text, str):  # a stand-in library's list of lines
-                    text = "\n".join(text)
-                read_out, read_vorout = read
-                return (
-                    read_values(out_values, read_out) if read_out is not None else {},
-                    read_values(vorout_values, read_vorout) if read_vorout is not None else {},
-                    text,
-                )
+                return _outputs(code, message, text, read, read_values, out_values, vorout_values)
             finally:
                 if vorout_values is None:  # the call raised: release whatever it left
                     release_outputs(lib.free, c_out, c_vorout)
@@ -246,22 +237,37 @@ def _call(
             code, message, text = lib.triangulate(encoded, c_in, c_out, c_vorout, c_callback, cancel, c_progress)
         if callback_errors:
             raise callback_errors[0]
-        if code != 0:
-            raise TriangulateError(message or f"triangulate failed (code {code})", code)
-        if not isinstance(text, str):  # a stand-in library's list of lines
-            text = "\n".join(text)
-        read_out, read_vorout = read
-        return (
-            read_output(c_out, read_out) if read_out is not None else {},
-            read_output(c_vorout, read_vorout) if read_vorout is not None else {},
-            text,
-        )
+        return _outputs(code, message, text, read, read_output, c_out, c_vorout)
     finally:
         if display is not None:
             display.close()
         # `run_interruptibly` returns or raises only once the library is done with the structs.
         if foreign is None or foreign.finished():
             release_outputs(lib.free, c_out, c_vorout)
+
+
+def _outputs(
+    code: int,
+    message: str,
+    text: "str | list[str]",
+    read: "tuple[OutputReader | None, OutputReader | None]",
+    read_one: Callable,
+    out: object,
+    vorout: object,
+) -> tuple[dict[str, np.ndarray], dict[str, np.ndarray], str]:
+    """What :func:`_call` returns for a finished call: its error raised, else the mesh's and the
+    Voronoi diagram's arrays read by ``read_one`` from ``out`` and ``vorout`` (structs or their
+    unpacked values) as ``read`` asks, and the warning lines as one text."""
+    if code != 0:
+        raise TriangulateError(message or f"triangulate failed (code {code})", code)
+    if not isinstance(text, str):  # a stand-in library's list of lines
+        text = "\n".join(text)
+    read_out, read_vorout = read
+    return (
+        read_one(out, read_out) if read_out is not None else {},
+        read_one(vorout, read_vorout) if read_vorout is not None else {},
+        text,
+    )
 
 
 def _report(switches: str, text: str) -> None:
