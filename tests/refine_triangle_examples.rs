@@ -765,11 +765,16 @@ fn with_y_bad_triangles_stay_as_in_triangle_and_no_more() {
     }
 }
 
-/// Decimation keeps the mesh's smallest angle but never lifts it, and the raise after it lifts
-/// it where that costs no triangle, or once a few for much (`Driver::raise_smallest_angle`).
-/// Ours must be valid, no larger than Triangle's and no worse in smallest angle on the issue's
-/// case (`double_hex2.poly` with `pq`: 66 triangles at 20.96° where Triangle's 68 have 21.03°)
-/// and others where the mesh's worst triangle is one refinement made (issue 24).
+/// How far below Triangle's our polished mesh's smallest angle may be (degrees).
+const POLISHED_ANGLE_SLACK: f64 = 0.5;
+
+/// Decimation keeps the mesh's smallest angle, and the polish after it raises it where moving
+/// the worst triangle's corners can (issue 36: one bounded pass; the whole-mesh rounds and the
+/// raise that lifted the smallest angle past Triangle's on every case cost four times the
+/// time). Ours must be valid and no larger than Triangle's, and its smallest angle at most
+/// [`POLISHED_ANGLE_SLACK`] below Triangle's on the issue's case (`double_hex2.poly` with `pq`:
+/// 66 triangles at 20.64° where Triangle's 68 have 21.03°) and others where the mesh's worst
+/// triangle is one refinement made (issue 24).
 #[test]
 fn improved_meshes_keep_triangles_smallest_angle_with_no_more_triangles() {
     let triangle = reference_or_fail();
@@ -802,7 +807,7 @@ fn improved_meshes_keep_triangles_smallest_angle_with_no_more_triangles() {
             t.triangles
         );
         assert!(
-            o.smallest_angle >= t.smallest_angle - ANGLE_TOLERANCE,
+            o.smallest_angle >= t.smallest_angle - POLISHED_ANGLE_SLACK,
             "{context}: smallest angle {}°, Triangle's {}°",
             o.smallest_angle,
             t.smallest_angle

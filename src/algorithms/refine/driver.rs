@@ -5,7 +5,7 @@ use super::attributes::Attributes;
 use super::encroachment::NEGLIGIBLE_SLIVER;
 use super::polling::Polling;
 use super::queue::QueueOrder;
-use super::refinement::{Aside, Refinement, RunEnd, Settings};
+use super::refinement::{Refinement, RunEnd, Settings};
 use super::report::{Report, Warning};
 use super::{inside, worst_triangle, Quality, VertexKind, GUARANTEED_ANGLE};
 use crate::algorithms::constrain::Constrainer;
@@ -13,21 +13,10 @@ use crate::algorithms::domain::Domain;
 use crate::geometry::Predicates;
 use crate::mesh::Mesh;
 
-/// [`Driver::raise_smallest_angle`]: its most tries, and the largest mesh it works on (each try
-/// copies the mesh and scans it).
-const RAISES: usize = 6;
-const RAISE_UP_TO: u64 = 1 << 16;
-/// A raise that adds triangles stands (with those after it) only if it lowers the number of
-/// triangles over the sine of the smallest angle by this fraction.
-const GROWTH_GAIN: f64 = 0.1;
-
 /// Above that angle, refinement first runs straight toward it with a budget of this many new
 /// vertices per triangle of the unrefined mesh (plus what the area bound asks for); a run that
 /// finishes within it is compared with the other queue order only.
 const PLAIN_STRAIGHT_PER_TRIANGLE: u64 = 4;
-/// A finished straight run with at most this many new vertices is tried in the other order of
-/// the bad triangles too ([`Driver::try_worst_angle_order`]): a few tenths of a second.
-const OTHER_ORDER_TRY: u64 = 1 << 17;
 /// If that is not enough, the straight run may go on to this many new vertices per triangle of
 /// the mesh refined to the guaranteed angle.
 const GUARANTEED_MULTIPLE: u64 = 4;
@@ -93,8 +82,6 @@ pub fn refine<P: Predicates>(
         quality,
         runaway_limit,
         warnings: Vec::new(),
-        improved: false,
-        raisable: false,
     };
     let from_the_start = quality.caller_grid.is_some_and(|c| c.from_the_start);
     if from_the_start && !driver.refinement.move_onto_caller_grid() {
@@ -112,14 +99,10 @@ pub fn refine<P: Predicates>(
             driver.run_within(None)
         }
     };
-    // The finished mesh is improved (smoothed and decimated: see `Driver::improve` for when
+    // The finished mesh is improved (decimated and polished: see `Driver::improve` for when
     // not), in the frame it was refined in.
-    if outcome == Outcome::Finished && !driver.improved {
+    if outcome == Outcome::Finished {
         outcome = driver.improve();
-    }
-    // Once, on the mesh that stands.
-    if outcome == Outcome::Finished && driver.raisable {
-        outcome = driver.raise_smallest_angle();
     }
     // In a frame finer than the caller's: the mesh goes onto the caller's grid, and what
     // rounding spoiled there is refined again, at the angle of the last run, with new points on
@@ -195,11 +178,6 @@ struct Driver<'r, 'q, P: Predicates> {
     runaway_limit: Option<u64>,
     /// The warnings of the runs, in order.
     warnings: Vec<Warning>,
-    /// Whether the live state is improved already ([`Self::improve`]).
-    improved: bool,
-    /// Whether the live state's smallest angle is to be raised
-    /// ([`Self::raise_smallest_angle`]): it was improved, and kept improved.
-    raisable: bool,
 }
 
 impl<P: Predicates> Driver<'_, '_, P> {
@@ -264,7 +242,7 @@ impl<P: Predicates> Driver<'_, '_, P> {
         // Triangle's `greenland.ele` with `rq34`, an uninterrupted straight run made 922 000
         // new vertices in 0.7 s, 3.6× the limit, to be thrown away).
         match self.run_within(Some(self.steiner_points() + plain)) {
-            Outcome::Finished => return self.try_worst_angle_order(&mut aside, angle),
+            Outcome::Finished => return Outcome::Finished,
             Outcome::RunBudget => {}
             outcome => return outcome,
         }
@@ -321,58 +299,13 @@ impl<P: Predicates> Driver<'_, '_, P> {
         outcome
     }
 
-    /// Above 30° neither order of the bad triangles is the better one on every input (measured
-    /// on Triangle's example files at 33° and 34°: shortest edge first makes up to 1.7× the
-    /// triangles of worst angle first, and worst angle first up to 3.5× those of shortest edge
-    /// first; the smaller of the two, 0.98× Triangle's on geometric mean, where either alone
-    /// is 1.02×). So a finished straight run that was cheap (at most [`OTHER_ORDER_TRY`] new
-    /// vertices) is run again from the unrefined state `aside` in worst-angle order, within as
-    /// many new vertices, and the mesh with fewer triangles stands (the straight one on a
-    /// tie). On large meshes the second run would double the time, and it is not tried.
-    /// Finished, or cancelled during the second run.
-    fn try_worst_angle_order(&mut self, aside: &mut Aside<P>, angle: f64) -> Outcome {
-        let straight_points = self.steiner_points();
-        if straight_points > OTHER_ORDER_TRY {
-            return Outcome::Finished;
-        }
-        // Each mesh is compared improved ([`Self::improve`]).
-        if self.improve() == Outcome::Cancelled {
-            return Outcome::Cancelled;
-        }
-        let straight_triangles = self.inside_triangle_count();
-        let straight_raisable = self.raisable;
-        // Live: the unrefined state, in the other order; aside: the straight run's.
-        self.refinement.exchange(aside);
-        self.refinement.set_order(QueueOrder::WorstAngle);
-        self.refinement.set_angle(angle);
-        self.seed();
-        let mut outcome = self.run_within(Some(self.steiner_points() + straight_points));
-        if outcome == Outcome::Finished {
-            outcome = self.improve();
-        }
-        let better =
-            outcome == Outcome::Finished && self.inside_triangle_count() < straight_triangles;
-        if !better {
-            self.refinement.exchange(aside);
-            self.raisable = straight_raisable;
-        }
-        self.refinement.set_order(QueueOrder::ShortestEdge);
-        match outcome {
-            Outcome::Cancelled => Outcome::Cancelled,
-            _ => Outcome::Finished,
-        }
-    }
-
-    /// Smooths and decimates the finished mesh ([`Refinement::improve`]) and refines again
+    /// Decimates and polishes the finished mesh ([`Refinement::improve`]) and refines again
     /// what that left bad (rarely anything: a tie among cocircular vertices when a vertex is
     /// put back, an area bound after flips, a subsegment that a moved vertex encroaches). Up to
     /// [`GUARDED_IMPROVEMENT`] triangles, the mesh before stands if the one after has more
     /// triangles or a smaller angle (with `Y`, new points may go where refinement had left bad
-    /// triangles whole). Finished, or cancelled; the caller then raises the smallest angle of
-    /// the mesh that stands, once ([`Self::raise_smallest_angle`], where `raisable` says so).
+    /// triangles whole). Finished, or cancelled.
     fn improve(&mut self) -> Outcome {
-        self.improved = true;
-        self.raisable = false;
         // Not under `S` (which counts insertions), nor with the user's test (which would be
         // asked about every triangle tried: slow where it is a script's callback, and it may
         // answer by a state of its own, as Triangle's callers' tests may).
@@ -397,77 +330,7 @@ impl<P: Predicates> Driver<'_, '_, P> {
                 return Outcome::Finished;
             }
         }
-        self.raisable = outcome == Outcome::Finished;
         outcome
-    }
-
-    /// Raises the smallest angle of an improved mesh of up to [`RAISE_UP_TO`] triangles where
-    /// that costs no triangle, or few for much: the worst triangle is split as refinement would
-    /// split it, the mesh around the new vertex improved again and refined; the result stands
-    /// if it has no more triangles and a larger smallest angle, else the mesh before does, and
-    /// it stops. At most [`RAISES`] times. Decimation keeps the smallest angle but never lifts
-    /// it past a triangle that refinement had no reason to split (measured on Triangle's
-    /// example files: a larger smallest angle on 25 of the 132 cases with triangles, none
-    /// smaller; fewer triangles on 5, none more — `dots.node q34` 34.18° → 36.42° with 659
-    /// triangles instead of 762; 23 % more time in all).
-    ///
-    /// Once, a raise with more triangles goes on where the worst triangle has a corner that
-    /// refinement placed (a triangle of input and segment vertices alone is the input's, as in
-    /// Triangle's mesh): it stands, with the raises after it, if in the end the number of
-    /// triangles over the sine of the smallest angle is at least [`GROWTH_GAIN`] lower. That
-    /// ratio is the mesh's size times the factor by which its worst element's stiffness grows
-    /// (Shewchuk, "What is a good linear finite element?", 2002: the largest eigenvalue of a
-    /// linear triangle's stiffness matrix grows with the cotangents of its angles, about as the
-    /// inverse of the smallest angle's sine when that angle is small).
-    /// Measured on the example files: `double_hex2.poly pq` 66 triangles at 20.96° → 68 at
-    /// 27.24° (Triangle: 68 at 21.03°); no other case changes at 10 %; at 5 %, `double_hex.poly
-    /// pq` 162 at 25.03° → 164 at 27.22° too; at 0, nine cases, none above Triangle's count.
-    /// Finished, or cancelled.
-    fn raise_smallest_angle(&mut self) -> Outcome {
-        // The state before the one raise that added triangles, its count and smallest angle.
-        let mut before_growth: Option<(Aside<P>, u64, f64)> = None;
-        for _ in 0..RAISES {
-            let triangles = self.inside_triangle_count();
-            if triangles > RAISE_UP_TO {
-                break;
-            }
-            let Some((worst, smallest)) = worst_triangle(self.refinement.mesh()) else {
-                break;
-            };
-            let made_by_refinement = self.refinement.has_free_corner(worst);
-            let mut before = self.refinement.copy_aside();
-            let Some(new) = self.refinement.split_worst_triangle(worst) else {
-                break;
-            };
-            self.refinement.improve_near(Some(new));
-            self.refinement.forget_kept_whole();
-            let outcome = self.run_within(None);
-            if outcome == Outcome::Cancelled {
-                return outcome;
-            }
-            let higher = outcome == Outcome::Finished
-                && smallest_angle_sin2(self.refinement.mesh()) > smallest;
-            if higher && self.inside_triangle_count() <= triangles {
-                continue;
-            }
-            if higher && made_by_refinement && before_growth.is_none() {
-                before_growth = Some((before, triangles, smallest));
-                continue;
-            }
-            self.refinement.exchange(&mut before);
-            break;
-        }
-        if let Some((mut start, triangles, smallest)) = before_growth {
-            let cost = |triangles: u64, sin2: f64| triangles as f64 / sin2.sqrt();
-            let now = cost(
-                self.inside_triangle_count(),
-                smallest_angle_sin2(self.refinement.mesh()),
-            );
-            if now > (1.0 - GROWTH_GAIN) * cost(triangles, smallest) {
-                self.refinement.exchange(&mut start);
-            }
-        }
-        Outcome::Finished
     }
 
     /// Seeds the unrefined domain with lattice points where a fixed area bound governs

@@ -1,56 +1,58 @@
-//! Improvement of a finished refinement: free vertices are moved where their triangles are
-//! better (smoothing), and deleted where the mesh can do without them (decimation).
+//! Improvement of a finished refinement: one pass of decimation, then a polish of the worst
+//! triangles. Each is local and bounded: a vertex is tried once, with a search of at most
+//! [`SEARCH`] evaluations per vertex moved.
 //!
 //! Delaunay refinement puts each vertex where a bad triangle was, and never moves it; later
 //! vertices nearby (a split subsegment, a neighbour's off-centre) often leave an earlier one
-//! badly placed, or superfluous: without it the constrained Delaunay triangulation of the
-//! others would meet every bound. So, in rounds:
-//! - *smoothing* (Laplacian smoothing kept Delaunay: D. A. Field, "Laplacian smoothing and
-//!   Delaunay triangulations", 1988; accepted only where it helps, as in the "smart" smoothing
-//!   of Freitag, Jones and Plassmann, 1995; then optimized on the smallest angle, Freitag and
-//!   Ollivier-Gooch 1997): a free vertex goes to the centroid of its link, or halfway there,
-//!   then a direct search maximizes its star's smallest angle; the move is made if it raises
-//!   that angle, leaves every triangle of the star counter-clockwise, encroaches no subsegment
-//!   of its link (lens, or circle with `D`) and keeps the area bounds; Lawson
-//!   flips restore the constrained Delaunay property (a flip never lowers the smaller of the
-//!   two triangles' smallest angles, so the bound holds past the star too);
-//! - *decimation*: a free vertex is deleted ([`crate::mesh::Mesh::delete_vertex`]) if the
+//! superfluous: without it, and with its neighbours moved a little, the constrained Delaunay
+//! triangulation of the others would meet every bound. So:
+//! - *decimation*, once per vertex refinement placed, in the order they were made: a free vertex
+//!   (a circumcentre or off-centre; not a lattice seed, which stands for the area bound's own
+//!   points) is deleted ([`crate::mesh::Mesh::delete_vertex`]); the deletion stands if the
 //!   triangles that fill its star have their smallest angle at least the smallest angle of the
-//!   mesh's triangles that meet θ (the mesh's smallest angle does not go down) and meet the area
-//!   bounds; else it goes back in at its point. A deletion encroaches no subsegment (the vertex
-//!   set only shrinks) and keeps the triangulation constrained Delaunay. With `Y`/`YY`, where
-//!   refinement leaves the bad triangles that only a vertex on a segment could mend, a deletion
-//!   also stands if the triangles around the deleted vertex's link are no worse than before
-//!   (smallest angle, number below the floor).
+//!   mesh's triangles that meet θ and meet the area bounds, or if moving the free corners of
+//!   those that do not (optimization-based smoothing of the smallest angle: Freitag and
+//!   Ollivier-Gooch 1997, by a compass search, Kolda, Lewis and Torczon 2003) makes every
+//!   triangle around them so; else the moved vertices go back and it goes back in at its
+//!   point. With `Y`/`YY`, where refinement leaves the bad triangles that only a vertex on a
+//!   segment could mend, a deletion also stands if the triangles around the deleted vertex's
+//!   link are no worse than before (smallest angle, number below the floor). A vertex that
+//!   refinement put on a segment is deleted the same way when the subsegment its two
+//!   subsegments become is not encroached ([`crate::mesh::Mesh::delete_segment_vertex`]; not
+//!   with `Y`/`YY`). Measured on Triangle's example files, the deletions that stand are about
+//!   half of those tried, and seven in eight of them need the moves; it is what makes the
+//!   meshes smaller than Triangle's (0.83× its triangles on geometric mean, 0.99× without);
+//! - *polish*: the worst triangle's corners that refinement placed are moved (free ones by the
+//!   same search, those on segments along them, [`super::sliding`]) while that raises its
+//!   smallest angle, worst triangle first ([`Refinement::polish`]).
 //!
-//! Free vertices are the split points of bad triangles and the lattice seeds. Vertices that
-//! refinement put on segments are slid along them ([`super::sliding`]) and deleted the same way
-//! when the subsegment their two subsegments become is not encroached
-//! ([`crate::mesh::Mesh::delete_segment_vertex`]; not with `Y`/`YY`). Input vertices stay. A
-//! moved vertex's attributes are interpolated again at its new place. Later rounds try only the
-//! vertices near a change of the round before. Whatever a reinsertion or a flip leaves bad is
-//! the driver's to refine again (the driver: not with `S` or the user's test, and only up to
+//! A move is made only where every triangle of the star stays counter-clockwise, no subsegment
+//! of its link is encroached (lens, or circle with `D`) and the area bounds hold; Lawson flips
+//! restore the constrained Delaunay property (a flip never lowers the smaller of the two
+//! triangles' smallest angles). Input vertices stay. A moved vertex's attributes are
+//! interpolated again at its new place. Whatever a reinsertion or a flip leaves bad is the
+//! driver's to refine again (the driver: not with `S` or the user's test, and only up to
 //! [`IMPROVE_UP_TO`] Steiner vertices).
+//!
+//! An earlier design smoothed every free vertex and decimated in three rounds, then smoothed
+//! again, compared two orders of refinement above 30° and split the worst triangle again
+//! while that raised the smallest angle: 0.80× Triangle's triangles, a smallest angle at least
+//! Triangle's on all 128 cases of the table, at 27× Triangle's time; this pass: 0.83×, 120 of
+//! 128 (the others within 0.4°), at 7× (the refinement alone: 1.8×).
 
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
 use std::f64::consts::FRAC_1_SQRT_2;
 
 use super::Refinement;
 use crate::algorithms::delaunay::Location;
-use crate::algorithms::refine::walk::{walk, Walk};
 use crate::algorithms::refine::{inside, VertexKind};
 use crate::geometry::{frame_coordinates, min_angle_sin2, Point, Predicates};
-use crate::mesh::{TriangleId, VertexId, GHOST};
+use crate::mesh::{Mesh, TriangleId, VertexId, GHOST};
 
-/// Rounds of smoothing and decimation, then of smoothing alone. Measured on Triangle's example
-/// files (`REFINE_TABLE=only cargo bench --bench refine`, 2026-12-07), with the
-/// [`SEARCH`] evaluations, the raise after it and every target of the table (counts at most
-/// Triangle's on 128 of 128 cases, geometric mean, smallest angles at least Triangle's on 128):
-/// 5 + 3 rounds and 256 evaluations, geometric mean 0.798, our time 98× Triangle's over the
-/// table; 5 + 3 and 32, 0.799, 57×; 3 + 2 and 32, 0.804, 35×; 3 + 1 and 32, 0.803, 28×. Below
-/// that a target goes: 2 + 2 rounds leave 124 smallest angles at least Triangle's, 16 or 8
-/// evaluations 127 counts at most Triangle's.
-const ROUNDS: usize = 3;
-const POLISHING_ROUNDS: usize = 1;
+/// How many of the worst triangles [`Refinement::polish`] may try to improve per 16 Steiner
+/// vertices.
+const POLISH_STEPS: usize = 4;
 
 /// A deletion must keep the smallest angle's sine squared this fraction above the bound, and a
 /// move raise it by [`GAIN`]: so that where rounding differs (the same mesh in another frame,
@@ -83,15 +85,6 @@ const SEARCH: usize = 32;
 /// `greenland.ele` with `rq34` (41 000) is improved, in 1.3 s, to 0.85× Triangle's triangles.
 const IMPROVE_UP_TO: usize = 1 << 16;
 
-/// The steps of a round of [`Refinement::improve`], in order.
-#[derive(Clone, Copy)]
-enum Step {
-    Smooth,
-    Slide,
-    Delete,
-    Unsplit,
-}
-
 impl<P: Predicates> Refinement<'_, '_, P> {
     /// Whether the finished mesh is small enough to be improved: at most [`IMPROVE_UP_TO`]
     /// Steiner vertices.
@@ -109,113 +102,100 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         steiner <= IMPROVE_UP_TO
     }
 
-    /// Smooths and decimates the finished mesh (see the module documentation).
+    /// Decimates the finished mesh once and polishes its worst triangles (see the module
+    /// documentation).
     pub(in crate::algorithms::refine) fn improve(&mut self) {
-        self.improve_near(None);
-    }
-
-    /// Smooths and decimates the vertices within two rings of `near` (after a change there:
-    /// see [`Self::split_worst_triangle`]), or, with `None`, the whole mesh, and in later rounds
-    /// those near a change of the round before.
-    pub(in crate::algorithms::refine) fn improve_near(&mut self, near: Option<VertexId>) {
-        let mut floor = self.smallest_good_angle_sin2();
-        let mut free: Vec<VertexId> = (0..self.kinds.len() as u32)
-            .map(VertexId::new)
-            .filter(|v| matches!(self.kinds[v.index()], VertexKind::Free | VertexKind::Seed))
-            .collect();
-        let mut on_segments: Vec<VertexId> = (0..self.kinds.len() as u32)
-            .map(VertexId::new)
-            .filter(|v| matches!(self.kinds[v.index()], VertexKind::OnSegment { .. }))
-            .collect();
+        let floor = self.smallest_good_angle_sin2();
         let mut link = Vec::new();
-        // Per vertex, the last round in which it or a neighbour changed: after the first round,
-        // only those of the round before or this one are tried again.
-        let mut touched = vec![0u32; self.kinds.len()];
-        // Round 1 tries every vertex; after a local change, the rounds start at 2 with the
-        // vertices near it marked as changed in round 1.
-        let first_round = match near {
-            None => 1,
-            Some(v) => {
-                let mesh = self.mesh();
-                let ring: Vec<VertexId> = mesh.star(v).map(|e| mesh.dest(e)).collect();
-                for &u in ring.iter().chain([&v]) {
-                    if u == GHOST {
-                        continue;
-                    }
-                    touched[u.index()] = 1;
-                    for e in mesh.star(u) {
-                        let x = mesh.dest(e);
-                        if x != GHOST {
-                            touched[x.index()] = 1;
-                        }
-                    }
-                }
-                2
-            }
-        };
-        let mut around = Vec::new();
-        for round in first_round..=(ROUNDS + POLISHING_ROUNDS) as u32 {
-            let mut changed = 0;
-            let steps: &[Step] = if round as usize > ROUNDS {
-                &[Step::Smooth, Step::Slide]
-            } else {
-                &[Step::Smooth, Step::Slide, Step::Delete, Step::Unsplit]
-            };
-            for &kind in steps {
-                // The floor rises with the mesh's smallest angle (smoothing raises it; nothing
-                // lowers it below the floor): measured on Triangle's example files, a floor
-                // kept from the start gives 0.78× Triangle's triangles on geometric mean and a
-                // smallest angle at least Triangle's on 118 of 128 cases; raised before each
-                // round's deletions, 0.80× and 123.
-                if matches!(kind, Step::Delete) {
-                    floor = floor.max(self.smallest_good_angle_sin2());
-                }
-                let list = match kind {
-                    Step::Smooth | Step::Delete => &mut free,
-                    Step::Slide | Step::Unsplit => &mut on_segments,
-                };
-                let mut candidates = std::mem::take(list);
-                candidates.retain(|&w| {
-                    if round > 1 && touched[w.index()] + 1 < round {
-                        return true;
-                    }
-                    around.clear();
-                    around.extend(self.mesh().star(w).map(|e| self.mesh().dest(e)));
-                    let done = match kind {
-                        Step::Smooth => self.try_smoothing(w, floor, &mut link, SEARCH),
-                        Step::Slide => self.try_sliding(w, floor, &mut link),
-                        Step::Delete => self.try_deleting(w, floor, &mut link, SEARCH),
-                        Step::Unsplit => self.try_unsplitting(w, floor),
-                    };
-                    if done {
-                        changed += 1;
-                        touched[w.index()] = round;
-                        for &v in &around {
-                            if v != GHOST {
-                                touched[v.index()] = round;
-                            }
-                        }
-                    }
-                    // Deleted vertices leave the list; moved ones stay.
-                    !(done && matches!(kind, Step::Delete | Step::Unsplit))
-                });
-                match kind {
-                    Step::Smooth | Step::Delete => free = candidates,
-                    Step::Slide | Step::Unsplit => on_segments = candidates,
-                }
-            }
-            if self.polling.cancelled() {
-                break;
-            }
-            // A round without a change leaves later decimation rounds nothing to retry (they
-            // cost nothing then): on to the polishing rounds.
-            if changed == 0 && round as usize >= ROUNDS {
-                break;
+        // Each vertex that refinement placed is tried once, in the order it was made (the
+        // lattice seeds are the area bound's own points: a deletion there cannot stand).
+        for i in 0..self.kinds.len() {
+            let w = VertexId::new(i as u32);
+            if self.kinds[i] == VertexKind::Free {
+                self.try_deleting(w, floor, &mut link, SEARCH);
             }
         }
+        for i in 0..self.kinds.len() {
+            let w = VertexId::new(i as u32);
+            if matches!(self.kinds[i], VertexKind::OnSegment { .. }) {
+                self.try_unsplitting(w, floor);
+            }
+        }
+        self.polish(&mut link);
         // What reinsertions queued is found again by the run that follows.
         self.bad.clear();
         self.encroached.clear();
+    }
+
+    /// Raises the mesh's smallest angle where that is cheap: the worst triangle's corners
+    /// that refinement placed are moved (free ones by [`Self::best_place`], those on segments
+    /// along them) while that raises the triangle's angle, worst triangle first, and it stops
+    /// at the first worst triangle that no move improves (the mesh's smallest angle stays
+    /// there) or after [`POLISH_STEPS`] triangles per 16 Steiner vertices (plus 16). A move
+    /// never lowers an angle below the one it raised, and Lawson's flips after it never lower
+    /// the smaller of two triangles' smallest angles, so the smallest angle only rises.
+    fn polish(&mut self, link: &mut Vec<(Point, Point, bool)>) {
+        // Triangles below θ (those Triangle's rule excuses, or left by `Y`) are not polished,
+        // and no move makes a triangle worse than the worst of those that meet θ.
+        let floor = self.smallest_good_angle_sin2();
+        let theta = self.angle.sin2();
+        let mesh = self.mesh();
+        let key = |mesh: &Mesh, t: TriangleId| {
+            min_angle_sin2(mesh.triangle(t).map(|v| mesh.point(v))).to_bits()
+        };
+        // Sines squared are non-negative: their bit patterns order as they do.
+        let mut heap: BinaryHeap<Reverse<(u64, u32)>> = mesh
+            .triangles()
+            .filter(|&t| !mesh.is_ghost(t) && inside(mesh, t))
+            .map(|t| Reverse((key(mesh, t), t.index() as u32)))
+            .filter(|&Reverse((bits, _))| f64::from_bits(bits) >= theta)
+            .collect();
+        let steiner = self
+            .kinds
+            .iter()
+            .filter(|k| **k != VertexKind::Input)
+            .count();
+        let mut steps = 16 + POLISH_STEPS * steiner / 16;
+        while let Some(Reverse((bits, t))) = heap.pop() {
+            let t = TriangleId::new(t);
+            let mesh = self.mesh();
+            // Moves keep the triangles' slots (flips reuse theirs): an entry whose corners
+            // changed is put back at its triangle's present value.
+            let now = key(mesh, t);
+            if now != bits {
+                if now >= theta.to_bits() {
+                    heap.push(Reverse((now, t.index() as u32)));
+                }
+                continue;
+            }
+            if steps == 0 {
+                break;
+            }
+            steps -= 1;
+            let mut raised = false;
+            for v in mesh.triangle(t) {
+                let moved = match self.kinds[v.index()] {
+                    VertexKind::Free | VertexKind::Seed => {
+                        self.try_smoothing(v, floor, link, SEARCH)
+                    }
+                    VertexKind::OnSegment { .. } => self.try_sliding(v, floor, link),
+                    _ => false,
+                };
+                if moved {
+                    let mesh = self.mesh();
+                    for e in mesh.star(v) {
+                        let u = e.triangle();
+                        if !mesh.is_ghost(u) && inside(mesh, u) && key(mesh, u) >= theta.to_bits() {
+                            heap.push(Reverse((key(mesh, u), u.index() as u32)));
+                        }
+                    }
+                }
+                raised |= moved;
+            }
+            if !raised {
+                break;
+            }
+        }
     }
 
     /// Moves free vertex `w` where its star's smallest angle is larger (see [`Self::best_place`])
@@ -526,49 +506,6 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         }
         let points = mesh.triangle(t).map(|v| mesh.point(v));
         min_angle_sin2(points) >= floor * (1.0 + MARGIN) && !self.too_big(t, points)
-    }
-
-    /// Splits the mesh's worst triangle `t` as refinement would (its split point, or the
-    /// subsegments that point would encroach, Ruppert's rule), and smooths a new free vertex.
-    /// The new vertex, if it split anything: the caller compares the meshes before and after.
-    pub(in crate::algorithms::refine) fn split_worst_triangle(
-        &mut self,
-        t: TriangleId,
-    ) -> Option<VertexId> {
-        let split = |this: &mut Self, e| {
-            if this.may_split(e) {
-                this.split_segment(e)
-            } else {
-                None
-            }
-        };
-        let (x, frame) = self.split_point_of(t)?;
-        let location = match walk::<P>(self.mesh(), t, x) {
-            Walk::Found(Location::OnVertex(_)) | Walk::Lost => return None,
-            Walk::Blocked(s) => return split(self, s),
-            Walk::Found(location) => location,
-        };
-        let encroached =
-            self.cavity
-                .encroached_by::<P>(self.cdt.mesh(), &self.encroachment, x, location);
-        if let Some(&(_, _, e)) = encroached.first() {
-            return split(self, e);
-        }
-        if self.too_close(x, location) {
-            return None;
-        }
-        let vertex = self.insert_free_vertex(x, t, frame, location)?;
-        self.try_smoothing(vertex, 0.0, &mut Vec::new(), SEARCH);
-        Some(vertex)
-    }
-
-    /// Whether triangle `t` has a free corner (a vertex refinement put there, not an input
-    /// vertex or one on a segment).
-    pub(in crate::algorithms::refine) fn has_free_corner(&self, t: TriangleId) -> bool {
-        self.mesh()
-            .triangle(t)
-            .iter()
-            .any(|v| matches!(self.kinds[v.index()], VertexKind::Free | VertexKind::Seed))
     }
 
     /// The quality of the domain's triangles around `vertices` (each once): the smallest
