@@ -15,7 +15,7 @@ use crate::mesh::Mesh;
 
 /// Above that angle, refinement first runs straight toward it with a budget of this many new
 /// vertices per triangle of the unrefined mesh (plus what the area bound asks for); a run that
-/// finishes within it is compared with the other queue order only.
+/// finishes within it stands.
 const PLAIN_STRAIGHT_PER_TRIANGLE: u64 = 4;
 /// If that is not enough, the straight run may go on to this many new vertices per triangle of
 /// the mesh refined to the guaranteed angle.
@@ -25,7 +25,7 @@ const GUARANTEED_MULTIPLE: u64 = 4;
 /// and not below this many in all (a few seconds of work).
 const RUNAWAY_PER_TRIANGLE: u64 = 1000;
 const RUNAWAY_MINIMUM: u64 = 1_000_000;
-/// Up to this many domain triangles, the mesh before smoothing and decimation is kept aside, to
+/// Up to this many domain triangles, the mesh before the improvement is kept aside, to
 /// stand if they made it worse (a copy of the mesh, which is small then).
 const GUARDED_IMPROVEMENT: u64 = 1 << 20;
 /// Failing that, the mesh refined to the guaranteed angle goes on toward the asked one with a
