@@ -16,7 +16,7 @@ use super::queue::{BadQueue, BadTriangle, QueueOrder};
 use super::split_point::AngleBound;
 use super::walk::{walk, Walk};
 
-mod improvement; // `Refinement::improve`: smoothing and decimation of the finished mesh
+mod improvement; // `Refinement::improve`: decimation, smoothing and polish of the finished mesh
 mod sliding; // `Refinement::try_sliding`: a vertex on a segment moved along it
 mod subsegments; // encroached subsegments and their splits
 use super::{inside, Quality, VertexKind};
