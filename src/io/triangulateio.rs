@@ -273,18 +273,22 @@ fn as_bytes<T: Copy>(v: &[T]) -> &[u8] {
 /// # Safety
 /// Each non-NULL destination field must point to a buffer large enough for its data, and each
 /// `field` pointer must be valid for reads and writes.
-unsafe fn transfer_all(transfers: Vec<Transfer>) -> Result<(), Error> {
-    let (mut copies, mut handed): (Vec<Transfer>, Vec<Transfer>) = (Vec::new(), Vec::new());
-    for t in transfers {
+unsafe fn transfer_all(mut transfers: Vec<Transfer>) -> Result<(), Error> {
+    // The copies first, those handed over after, in the one array (a small call allocates
+    // nothing more here).
+    let hand_over = |t: &Transfer| {
         // SAFETY: `field` points into a live TriangulateIO (caller's contract).
-        if unsafe { (*t.field).is_null() } && t.data.can_hand_over() {
-            handed.push(t);
-        } else {
-            copies.push(t);
-        }
-    }
-    let mut fresh: Vec<(*mut *mut c_void, *mut c_void)> = Vec::new();
-    for t in &copies {
+        let null = unsafe { (*t.field).is_null() };
+        null && t.data.can_hand_over()
+    };
+    transfers.sort_unstable_by_key(hand_over);
+    let first_handed = transfers
+        .iter()
+        .position(hand_over)
+        .unwrap_or(transfers.len());
+    let copies = &transfers[..first_handed];
+    let mut fresh: Vec<(*mut *mut c_void, *mut c_void)> = Vec::with_capacity(copies.len());
+    for t in copies {
         // SAFETY: `field` points into a live TriangulateIO (caller's contract).
         if unsafe { (*t.field).is_null() } {
             // malloc(0) may return NULL; ask for at least one byte so that a written array is
@@ -334,7 +338,7 @@ unsafe fn transfer_all(transfers: Vec<Transfer>) -> Result<(), Error> {
         copy_parts(&destinations, 0);
         copy_parts(&destinations, 1);
     }
-    for t in handed {
+    for t in transfers.drain(first_handed..) {
         // SAFETY: the field is live and NULL; the array's allocation is malloc's (HAND_OVER),
         // and from here the caller owns it.
         unsafe { *t.field = t.data.into_raw() };
@@ -386,7 +390,8 @@ pub unsafe fn write_output(
     out: &mut TriangulateIO,
     voronoi: Option<(VoronoiOutput, &mut TriangulateIO)>,
 ) -> Result<(), Error> {
-    let mut transfers: Vec<Transfer> = Vec::new();
+    // Room for every array of both structs: no regrowth.
+    let mut transfers: Vec<Transfer> = Vec::with_capacity(24);
     macro_rules! push {
         ($tio:expr, $field:ident, $kind:ident, $data:expr) => {
             if let Some(d) = $data {

@@ -480,6 +480,7 @@ fn insert_segments<P: Predicates>(
         })
     };
     let mut copy_of = first_copies(m as usize, duplicate_of.len(), ends);
+    cdt.reserve_segments(m as usize);
     for i in 0..m as usize {
         let marker = input.segment_markers.map_or(0, |m| m[i]);
         let [a, b] = ends(i);

@@ -190,6 +190,12 @@ impl<P: Predicates> Constrainer<P> {
         P::orient2d(self.pt(a), self.pt(b), self.pt(c))
     }
 
+    /// Room for `n` more segments' ids, so that registering them does not regrow the arrays.
+    pub fn reserve_segments(&mut self, n: usize) {
+        self.markers.reserve(n);
+        self.ends.reserve(n);
+    }
+
     /// Registers a segment from `a` to `b` with its marker; returns the new segment's id.
     pub fn new_segment_id(&mut self, marker: i32, a: VertexId, b: VertexId) -> u32 {
         self.markers.push(marker);
