@@ -5,6 +5,8 @@
 //! inconclusive). The `X` switch selects plain floating point ([`Inexact`]). Algorithms are generic
 //! over [`Predicates`] so that each choice is monomorphized into the hot loops.
 
+mod expansion;
+
 pub type Point = [f64; 2];
 
 /// Orientation and in-circle tests.
@@ -344,9 +346,10 @@ fn exact_incircle_positive(
 
 /// The exact in-circle determinant's sign (as a double of that sign, or its value): in 128-bit
 /// integers where the four points have small integer coordinates (grids, the corners of unit
-/// squares: the cocircular inputs whose ties reach this stage most often), else by `robust`'s
-/// adaptive stages, which zero some 20 KiB of expansions per call — some microseconds, more
-/// than a whole small triangulation.
+/// squares: the cocircular inputs whose ties reach this stage most often), else in short
+/// expansions where the coordinate differences are exact ([`expansion`]: nearby points, as
+/// ties are), else by `robust`'s adaptive stages, which zero some 20 KiB of expansions per
+/// call — some microseconds, more than a whole small triangulation.
 #[inline]
 fn exact_incircle(
     a: robust::Coord<f64>,
@@ -366,6 +369,12 @@ fn exact_incircle(
         let ((ax, ay, al), (bx, by, bl), (cx, cy, cl)) = (row(a), row(b), row(c));
         let det = al * (bx * cy - cx * by) + bl * (cx * ay - ax * cy) + cl * (ax * by - bx * ay);
         return det.signum() as f64;
+    }
+    let point = |p: robust::Coord<f64>| [p.x, p.y];
+    if let Some(det) =
+        expansion::incircle_of_exact_differences(point(a), point(b), point(c), point(d))
+    {
+        return det;
     }
     robust::incircle(a, b, c, d)
 }
