@@ -194,8 +194,8 @@ mod tests {
             // mostly exact), on a circle (rounded: ties and near ties) or a grid of decimal
             // steps (cocircular squares whose coordinates are not dyadic), or anywhere.
             let centre = [
-                (uniform() - 0.5) * 10f64.powi((case % 9) as i32 - 4),
-                (uniform() - 0.5) * 10f64.powi((case % 7) as i32 - 3),
+                (uniform() - 0.5) * 10f64.powi(case % 9 - 4),
+                (uniform() - 0.5) * 10f64.powi(case % 7 - 3),
             ];
             let radius = centre[0].abs().max(centre[1].abs()).max(1e-3) * 0.3;
             let points: Vec<[f64; 2]> = (0..4)
@@ -231,7 +231,10 @@ mod tests {
             decided > 10_000,
             "only {decided} cases had exact differences"
         );
-        assert!(ties > 100, "only {ties} exact ties of four distinct points among them");
+        assert!(
+            ties > 100,
+            "only {ties} exact ties of four distinct points among them"
+        );
     }
 
     #[test]
