@@ -252,7 +252,7 @@ impl<P: Predicates> Refinement<'_, '_, P> {
     /// [`SEARCH_RESOLUTION`] of it, halved when no step helps: Kolda, Lewis and Torczon,
     /// "Optimization by direct search", SIAM Review 2003) on the smallest angle, which is what
     /// the move is for (Freitag and Ollivier-Gooch's optimization-based smoothing, 1997).
-    /// Every place tried is one [`Self::may_move_to`] allows.
+    /// Every place tried is one [`Self::may_move_to_ccw`] allows, its triangles counter-clockwise.
     fn best_place(
         &self,
         pw: Point,
@@ -263,20 +263,31 @@ impl<P: Predicates> Refinement<'_, '_, P> {
     ) -> (Point, f64) {
         // A place's value, computed only as far as it can beat `bar` (-1 where it cannot, or
         // where the move is not allowed): the same comparisons as the full value's, for a
-        // fraction of its work, since most places tried are no better.
-        let value = |p: Point, bar: f64| {
+        // fraction of its work, since most places tried are no better. The triangles are
+        // tried from the one that last failed (the value does not depend on the order: a
+        // failure anywhere is -1, and the minimum is the same in any order), since nearby
+        // places tried in turn mostly fail at the same triangle.
+        let mut first = 0;
+        let mut value = |p: Point, bar: f64| {
             if p == pw {
                 return -1.0;
             }
             let mut smallest = f64::INFINITY;
-            for &(a, b, _) in link {
+            let mut i = first;
+            for _ in 0..link.len() {
+                let (a, b, _) = link[i];
                 let s = min_angle_sin2([p, a, b]);
                 if s <= bar || P::orient2d(p, a, b) <= 0.0 {
+                    first = i;
                     return -1.0;
                 }
                 smallest = smallest.min(s);
+                i += 1;
+                if i == link.len() {
+                    i = 0;
+                }
             }
-            if self.may_move_to(p, t, link) {
+            if self.may_move_to_ccw(p, t, link) {
                 smallest
             } else {
                 -1.0
@@ -318,14 +329,12 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         (best, best_value)
     }
 
-    /// Whether free vertex of triangle `t`'s region, with link `link`, may be moved to `p`: its
-    /// triangles stay counter-clockwise, no subsegment of the link is encroached (by the test
-    /// refinement uses: diametral lenses, or circles with `D`), the area bounds hold.
-    fn may_move_to(&self, p: Point, t: TriangleId, link: &[(Point, Point, bool)]) -> bool {
+    /// Whether free vertex of triangle `t`'s region, with link `link`, may be moved to `p`,
+    /// where its triangles are counter-clockwise: no subsegment of the link is encroached (by
+    /// the test refinement uses: diametral lenses, or circles with `D`), the area bounds hold.
+    fn may_move_to_ccw(&self, p: Point, t: TriangleId, link: &[(Point, Point, bool)]) -> bool {
         link.iter().all(|&(a, b, segment)| {
-            P::orient2d(p, a, b) > 0.0
-                && !(segment && self.encroachment.encroaches(a, b, p))
-                && !self.too_big(t, [p, a, b])
+            !(segment && self.encroachment.encroaches(a, b, p)) && !self.too_big(t, [p, a, b])
         })
     }
 
