@@ -72,21 +72,26 @@ impl<P: Predicates> Constrainer<P> {
     /// boundary where it was, as a vertex moved along a hull segment does), and restores the
     /// constrained Delaunay property by flips from its star and link; returns whether it moved.
     pub fn move_vertex(&mut self, v: VertexId, p: Point) -> bool {
+        let mut edges = std::mem::take(&mut self.scratch.lawson);
+        edges.clear();
         let mesh = self.inserter.mesh();
-        let mut edges = Vec::new();
         for e in mesh.star(v) {
             let (a, b) = (mesh.dest(e), mesh.apex(e));
             if a == GHOST || b == GHOST {
                 continue;
             }
             if P::orient2d(p, mesh.point(a), mesh.point(b)) <= 0.0 {
+                self.scratch.lawson = edges;
                 return false;
             }
             edges.push((v, a));
             edges.push((a, b));
         }
         self.inserter.mesh_mut().move_point(v, p);
-        self.restore_delaunay(edges);
+        self.inserter
+            .mesh_mut()
+            .legalize::<P, _>(&mut edges, &mut BetweenSegments::default());
+        self.scratch.lawson = edges;
         true
     }
 

@@ -96,6 +96,9 @@ struct Scratch {
     beyond: Vec<Beyond>,
     /// Buffers of the cavity retriangulation.
     cavity: CavityScratch,
+    /// The Lawson stack of [`Constrainer::move_vertex`], which the improvement of a refined
+    /// mesh calls for nearly every vertex it tries.
+    lawson: Vec<(VertexId, VertexId)>,
 }
 
 impl<P: Predicates> Constrainer<P> {

@@ -74,9 +74,14 @@ impl<'a> Attributes<'a> {
     }
 
     /// The attributes of vertex `w` (empty without attributes).
-    pub(super) fn row(&self, w: VertexId) -> Vec<f64> {
+    pub(super) fn row(&self, w: VertexId) -> &[f64] {
         let k = self.count;
-        self.values[w.index() * k..(w.index() + 1) * k].to_vec()
+        &self.values[w.index() * k..(w.index() + 1) * k]
+    }
+
+    /// How many attributes each vertex has.
+    pub(super) fn count(&self) -> usize {
+        self.count
     }
 
     /// Sets the attributes of vertex `w` to `row` (as [`Self::row`] gave them).

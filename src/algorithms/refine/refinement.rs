@@ -128,6 +128,8 @@ pub(super) struct Refinement<'r, 'q, P: Predicates> {
     limit: Option<u64>,
     /// Scratch space: the half-edges around a new vertex.
     around: Vec<EdgeId>,
+    /// Scratch space of the improvement, reused from vertex to vertex.
+    improving: improvement::Scratch,
     /// Whether new points are rounded to the caller's grid ([`Quality::caller_grid`]) as they
     /// are made: after the mesh was moved onto it.
     on_caller_grid: bool,
@@ -162,6 +164,7 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
             work: 0,
             limit: None,
             around: Vec::new(),
+            improving: improvement::Scratch::default(),
             on_caller_grid: false,
         }
     }

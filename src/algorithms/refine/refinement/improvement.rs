@@ -91,6 +91,20 @@ const SEARCH: usize = 32;
 /// `greenland.ele` with `rq34` (41 000) is improved, in 1.3 s, to 0.85× Triangle's triangles.
 const IMPROVE_UP_TO: usize = 1 << 16;
 
+/// Buffers of [`Refinement::try_deleting`], kept between vertices so that an attempt
+/// allocates little: the improvement tries nearly every free vertex.
+#[derive(Default)]
+pub(super) struct Scratch {
+    /// The deleted vertex's link.
+    neighbours: Vec<VertexId>,
+    /// The free corners of the bad triangles a deletion made.
+    candidates: Vec<VertexId>,
+    /// The vertices moved after a deletion, each with its point before.
+    moved: Vec<(VertexId, Point)>,
+    /// Their attributes before, a row per moved vertex, in the same order.
+    rows: Vec<f64>,
+}
+
 impl<P: Predicates> Refinement<'_, '_, P> {
     /// Whether the finished mesh is small enough to be improved: at most [`IMPROVE_UP_TO`]
     /// Steiner vertices.
@@ -369,18 +383,30 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         if self.polling.poll(self.work, || 0) || !self.mesh().is_deletable(w) {
             return false;
         }
+        let mut neighbours = std::mem::take(&mut self.improving.neighbours);
+        neighbours.clear();
+        let mesh = self.mesh();
+        neighbours.extend(mesh.star(w).map(|e| mesh.dest(e)).filter(|&v| v != GHOST));
+        let deleted = self.try_deleting_around(w, &neighbours, floor, link, search);
+        self.improving.neighbours = neighbours;
+        deleted
+    }
+
+    /// [`Self::try_deleting`] of deletable `w`, whose link is `neighbours`.
+    fn try_deleting_around(
+        &mut self,
+        w: VertexId,
+        neighbours: &[VertexId],
+        floor: f64,
+        link: &mut Vec<(Point, Point, bool)>,
+        search: usize,
+    ) -> bool {
         let p = self.mesh().point(w);
-        let neighbours: Vec<VertexId> = self
-            .mesh()
-            .star(w)
-            .map(|e| self.mesh().dest(e))
-            .filter(|&v| v != GHOST)
-            .collect();
         // With `Y`/`YY`, bad triangles that only a vertex on a segment could mend stay: a
         // deletion there need not make every triangle good, only leave the triangles around
         // the deleted vertex's link no worse.
         let before = (self.settings.quality.no_steiner_on_segments > 0)
-            .then(|| self.quality_around(&neighbours, floor));
+            .then(|| self.quality_around(neighbours, floor));
         let Some(made) = self.cdt.delete_vertex(w) else {
             return false;
         };
@@ -391,12 +417,12 @@ impl<P: Predicates> Refinement<'_, '_, P> {
                     mesh.is_ghost(t)
                         || !inside(mesh, t)
                         || !this.too_big(t, mesh.triangle(t).map(|v| mesh.point(v)))
-                }) && this.quality_around(&neighbours, floor).no_worse_than(b)
+                }) && this.quality_around(neighbours, floor).no_worse_than(b)
             })
         };
         if made.iter().all(|&t| self.good_enough(t, floor))
             || no_worse(self)
-            || self.smooth_after_deletion(&made, &neighbours, floor, link, search, before)
+            || self.smooth_after_deletion(&made, neighbours, floor, link, search, before)
         {
             self.kinds[w.index()] = VertexKind::Deleted;
             return true;
@@ -428,70 +454,82 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         search: usize,
         before: Option<Around>,
     ) -> bool {
-        let mut candidates: Vec<VertexId> = Vec::new();
-        for &t in made {
-            if self.good_enough(t, floor) {
-                continue;
-            }
-            for v in self.mesh().triangle(t) {
-                if matches!(self.kinds[v.index()], VertexKind::Free | VertexKind::Seed)
-                    && !candidates.contains(&v)
-                {
-                    candidates.push(v);
-                }
-            }
-        }
-        if candidates.is_empty() {
-            return false;
-        }
-        let mut moved: Vec<(VertexId, Point, Vec<f64>)> = Vec::new();
-        for _ in 0..2 {
-            for &x in &candidates {
-                if !self.mesh().is_deletable(x) {
+        let mut candidates = std::mem::take(&mut self.improving.candidates);
+        let mut moved = std::mem::take(&mut self.improving.moved);
+        let mut rows = std::mem::take(&mut self.improving.rows);
+        candidates.clear();
+        moved.clear();
+        rows.clear();
+        // A block, so that every way out puts the buffers back.
+        let good = 'smoothing: {
+            for &t in made {
+                if self.good_enough(t, floor) {
                     continue;
                 }
-                let mesh = self.mesh();
-                let px = mesh.point(x);
-                link.clear();
-                link.extend(mesh.star(x).map(|e| {
-                    let (a, b) = (mesh.dest(e), mesh.apex(e));
-                    (mesh.point(a), mesh.point(b), mesh.is_segment(e.next()))
-                }));
-                let Some(t) = mesh.vertex_edge(x).map(|e| e.triangle()) else {
-                    continue;
-                };
-                let old = star_min_sin2(px, link);
-                if old >= floor * (1.0 + MARGIN) {
-                    continue;
-                }
-                let (q, new) = self.best_place(px, old, t, link, search);
-                if new > old * (1.0 + GAIN) {
-                    if !moved.iter().any(|m| m.0 == x) {
-                        moved.push((x, px, self.attributes.row(x)));
+                for v in self.mesh().triangle(t) {
+                    if matches!(self.kinds[v.index()], VertexKind::Free | VertexKind::Seed)
+                        && !candidates.contains(&v)
+                    {
+                        candidates.push(v);
                     }
-                    self.move_free_vertex(x, q);
                 }
             }
-        }
-        if moved.is_empty() {
-            return false;
-        }
-        let mesh = self.mesh();
-        let good = neighbours
-            .iter()
-            .copied()
-            .chain(moved.iter().map(|m| m.0))
-            .all(|v| mesh.star(v).all(|e| self.good_enough(e.triangle(), floor)))
-            || before.is_some_and(|b| self.quality_around(neighbours, floor).no_worse_than(b));
-        if good {
-            return true;
-        }
-        for (x, px, row) in moved.into_iter().rev() {
-            if self.cdt.place_vertex(x, px) {
-                self.attributes.set_row(x, &row);
+            if candidates.is_empty() {
+                break 'smoothing false;
             }
-        }
-        false
+            for _ in 0..2 {
+                for &x in &candidates {
+                    if !self.mesh().is_deletable(x) {
+                        continue;
+                    }
+                    let mesh = self.mesh();
+                    let px = mesh.point(x);
+                    link.clear();
+                    link.extend(mesh.star(x).map(|e| {
+                        let (a, b) = (mesh.dest(e), mesh.apex(e));
+                        (mesh.point(a), mesh.point(b), mesh.is_segment(e.next()))
+                    }));
+                    let Some(t) = mesh.vertex_edge(x).map(|e| e.triangle()) else {
+                        continue;
+                    };
+                    let old = star_min_sin2(px, link);
+                    if old >= floor * (1.0 + MARGIN) {
+                        continue;
+                    }
+                    let (q, new) = self.best_place(px, old, t, link, search);
+                    if new > old * (1.0 + GAIN) {
+                        if !moved.iter().any(|m| m.0 == x) {
+                            moved.push((x, px));
+                            rows.extend_from_slice(self.attributes.row(x));
+                        }
+                        self.move_free_vertex(x, q);
+                    }
+                }
+            }
+            if moved.is_empty() {
+                break 'smoothing false;
+            }
+            let mesh = self.mesh();
+            let good = neighbours
+                .iter()
+                .copied()
+                .chain(moved.iter().map(|m| m.0))
+                .all(|v| mesh.star(v).all(|e| self.good_enough(e.triangle(), floor)))
+                || before.is_some_and(|b| self.quality_around(neighbours, floor).no_worse_than(b));
+            if !good {
+                let k = self.attributes.count();
+                for (i, &(x, px)) in moved.iter().enumerate().rev() {
+                    if self.cdt.place_vertex(x, px) {
+                        self.attributes.set_row(x, &rows[i * k..(i + 1) * k]);
+                    }
+                }
+            }
+            good
+        };
+        self.improving.candidates = candidates;
+        self.improving.moved = moved;
+        self.improving.rows = rows;
+        good
     }
 
     /// Deletes vertex `w`, put on a segment by refinement, if the subsegment its two
