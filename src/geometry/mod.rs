@@ -522,11 +522,30 @@ fn exact_sum_sign(terms: &[f64]) -> f64 {
 /// The squared sine of the smallest angle of triangle (a, b, c), which grows with that angle
 /// (at most 60°): twice the area over the product of the two longest edges is the sine of the
 /// angle between them, the one opposite the shortest edge.
+#[inline]
 pub fn min_angle_sin2([a, b, c]: [Point; 3]) -> f64 {
-    let sq = |p: Point, q: Point| (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2);
-    let (ab, bc, ca) = (sq(a, b), sq(b, c), sq(c, a));
+    min_angle_sin2_given_bc([a, b, c], squared_distance(b, c))
+}
+
+/// The squared distance between `p` and `q`.
+#[inline(always)]
+pub fn squared_distance(p: Point, q: Point) -> f64 {
+    (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2)
+}
+
+/// [`min_angle_sin2`] of triangle (a, b, c) with `bc`, [`squared_distance`] of `b` and `c`,
+/// given: the same operations, so the same value, for a caller that tries many `a` against one
+/// edge.
+#[inline(always)]
+pub fn min_angle_sin2_given_bc([a, b, c]: [Point; 3], bc: f64) -> f64 {
+    let sq = squared_distance;
+    let (ab, ca) = (sq(a, b), sq(c, a));
     let cross = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-    let longest_two = ab * bc * ca / ab.min(bc).min(ca);
+    // The shortest by plain comparisons, not `f64::min`'s NaN handling: where one is NaN, so
+    // is the product, and the value is 0 either way (sums of squares are never -0).
+    let shortest = if ab < bc { ab } else { bc };
+    let shortest = if shortest < ca { shortest } else { ca };
+    let longest_two = ab * bc * ca / shortest;
     if longest_two > 0.0 {
         cross * cross / longest_two
     } else {

@@ -51,7 +51,9 @@ use std::f64::consts::FRAC_1_SQRT_2;
 use super::Refinement;
 use crate::algorithms::delaunay::Location;
 use crate::algorithms::refine::{inside, VertexKind};
-use crate::geometry::{frame_coordinates, min_angle_sin2, Point, Predicates};
+use crate::geometry::{
+    frame_coordinates, min_angle_sin2, min_angle_sin2_given_bc, squared_distance, Point, Predicates,
+};
 use crate::mesh::{Mesh, TriangleId, VertexId, GHOST};
 
 /// How many of the worst triangles [`Refinement::polish`] may try to improve per 16 Steiner
@@ -103,6 +105,8 @@ pub(super) struct Scratch {
     moved: Vec<(VertexId, Point)>,
     /// Their attributes before, a row per moved vertex, in the same order.
     rows: Vec<f64>,
+    /// Per link edge of the vertex [`Refinement::best_place`] moves, its squared length.
+    sides: Vec<f64>,
 }
 
 impl<P: Predicates> Refinement<'_, '_, P> {
@@ -268,7 +272,7 @@ impl<P: Predicates> Refinement<'_, '_, P> {
     /// the move is for (Freitag and Ollivier-Gooch's optimization-based smoothing, 1997).
     /// Every place tried is one [`Self::may_move_to_ccw`] allows, its triangles counter-clockwise.
     fn best_place(
-        &self,
+        &mut self,
         pw: Point,
         old: f64,
         t: TriangleId,
@@ -281,6 +285,10 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         // tried from the one that last failed (the value does not depend on the order: a
         // failure anywhere is -1, and the minimum is the same in any order), since nearby
         // places tried in turn mostly fail at the same triangle.
+        let mut sides = std::mem::take(&mut self.improving.sides);
+        sides.clear();
+        sides.extend(link.iter().map(|&(a, b, _)| squared_distance(a, b)));
+        let this = &*self;
         let mut first = 0;
         let mut value = |p: Point, bar: f64| {
             if p == pw {
@@ -290,18 +298,22 @@ impl<P: Predicates> Refinement<'_, '_, P> {
             let mut i = first;
             for _ in 0..link.len() {
                 let (a, b, _) = link[i];
-                let s = min_angle_sin2([p, a, b]);
+                let s = min_angle_sin2_given_bc([p, a, b], sides[i]);
                 if s <= bar || P::orient2d(p, a, b) <= 0.0 {
                     first = i;
                     return -1.0;
                 }
-                smallest = smallest.min(s);
+                // `smallest.min(s)` without its NaN handling: the same value, since `smallest`
+                // is never NaN and a NaN `s` is skipped either way.
+                if s < smallest {
+                    smallest = s;
+                }
                 i += 1;
                 if i == link.len() {
                     i = 0;
                 }
             }
-            if self.may_move_to_ccw(p, t, link) {
+            if this.may_move_to_ccw(p, t, link) {
                 smallest
             } else {
                 -1.0
@@ -313,7 +325,7 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         });
         let (mut best, mut best_value) = (pw, old);
         for weight in [1.0, 0.5] {
-            let p = self.placed([pw[0] + weight * centroid[0], pw[1] + weight * centroid[1]]);
+            let p = this.placed([pw[0] + weight * centroid[0], pw[1] + weight * centroid[1]]);
             let v = value(p, best_value);
             if v > best_value {
                 (best, best_value) = (p, v);
@@ -329,7 +341,7 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         while step >= last && evaluations < search {
             let mut moved = false;
             for [dx, dy] in COMPASS {
-                let p = self.placed([best[0] + step * dx, best[1] + step * dy]);
+                let p = this.placed([best[0] + step * dx, best[1] + step * dy]);
                 let v = value(p, best_value);
                 evaluations += 1;
                 if v > best_value {
@@ -340,6 +352,7 @@ impl<P: Predicates> Refinement<'_, '_, P> {
                 step *= 0.5;
             }
         }
+        self.improving.sides = sides;
         (best, best_value)
     }
 
