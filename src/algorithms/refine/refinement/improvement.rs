@@ -361,7 +361,7 @@ impl<P: Predicates> Refinement<'_, '_, P> {
     /// the test refinement uses: diametral lenses, or circles with `D`), the area bounds hold.
     fn may_move_to_ccw(&self, p: Point, t: TriangleId, link: &[(Point, Point, bool)]) -> bool {
         link.iter().all(|&(a, b, segment)| {
-            !(segment && self.encroachment.encroaches(a, b, p)) && !self.too_big(t, [p, a, b])
+            !((segment && self.encroachment.encroaches(a, b, p)) || self.too_big(t, [p, a, b]))
         })
     }
 
