@@ -17,6 +17,23 @@
 use super::{BetweenSegments, EdgeId, Mesh, TriangleId, VertexId, GHOST, NONE};
 use crate::geometry::Predicates;
 
+/// Buffers of [`Mesh::delete_vertex_with`], kept between deletions so that one allocates
+/// nothing once they have grown (the improvement deletes, and puts back, nearly every free
+/// vertex).
+#[derive(Clone, Debug, Default)]
+pub struct Deletion {
+    /// The deleted vertex's link.
+    link: Vec<VertexId>,
+    /// The link while flips are planned on it.
+    ring: Vec<VertexId>,
+    /// The planned flips: each link vertex that leaves, with the diagonal it leaves.
+    plan: Vec<(VertexId, (VertexId, VertexId))>,
+    /// The Lawson stack.
+    stack: Vec<(VertexId, VertexId)>,
+    /// The triangles of the flips.
+    flipped: Vec<TriangleId>,
+}
+
 impl Mesh {
     /// Whether [`Self::delete_vertex`] may delete `v`: it is a corner of some triangle, not on
     /// the hull or the domain's boundary (no edge to the vertex at infinity), on no segment (no
@@ -45,18 +62,41 @@ impl Mesh {
     /// freed: the last slots move into them, so that the slots stay `0 .. triangle_count()`
     /// (ids of the moved triangles change; twins, segment ids, tags and vertex edges follow).
     pub fn delete_vertex<P: Predicates>(&mut self, v: VertexId) -> Option<Vec<TriangleId>> {
+        let mut made = Vec::new();
+        self.delete_vertex_with::<P>(v, &mut Deletion::default(), &mut made)
+            .then_some(made)
+    }
+
+    /// [`Self::delete_vertex`] with buffers kept by the caller: whether `v` was deleted, the
+    /// triangles that now fill its old star in `made` (cleared first; left empty when not).
+    pub fn delete_vertex_with<P: Predicates>(
+        &mut self,
+        v: VertexId,
+        scratch: &mut Deletion,
+        made: &mut Vec<TriangleId>,
+    ) -> bool {
+        made.clear();
         if !self.is_deletable(v) {
-            return None;
+            return false;
         }
-        let link: Vec<VertexId> = self.star(v).map(|e| self.dest(e)).collect();
+        let Deletion {
+            link,
+            ring,
+            plan,
+            stack,
+            flipped,
+        } = scratch;
+        link.clear();
+        link.extend(self.star(v).map(|e| self.dest(e)));
         // The edges to check afterwards, as vertex pairs (flips renumber half-edges).
-        let mut stack: Vec<(VertexId, VertexId)> = Vec::new();
+        stack.clear();
         // The flips planned on the link alone, so that a degenerate star leaves the mesh as it
         // is. Flipping edge v → w_i, in (v, w_i, w_i+1) and (w_i, v, w_i-1), makes them
         // (v, w_i-1, w_i+1) and (w_i-1, w_i, w_i+1), both counter-clockwise exactly when the
         // quadrilateral is strictly convex; w_i leaves v's link.
-        let mut ring = link.clone();
-        let mut plan: Vec<(VertexId, (VertexId, VertexId))> = Vec::new();
+        ring.clear();
+        ring.extend_from_slice(link);
+        plan.clear();
         let pv = self.point(v);
         while ring.len() > 3 {
             let k = ring.len();
@@ -66,18 +106,20 @@ impl Mesh {
                 P::orient2d(pa, pb, pc) > 0.0 && P::orient2d(pv, pa, pc) > 0.0
             });
             // None: a degenerate star, `v` stays.
-            let i = ear?;
+            let Some(i) = ear else {
+                return false;
+            };
             plan.push((ring[i], (ring[(i + k - 1) % k], ring[(i + 1) % k])));
             ring.remove(i);
         }
-        for (w, diagonal) in plan {
+        for &(w, diagonal) in plan.iter() {
             let e = self.find_edge(v, w).expect("an edge of the star");
             self.flip(e);
             stack.push(diagonal);
         }
-        let star: Vec<EdgeId> = self.star(v).collect();
         // Degree 3: (v, a, b), (v, b, c), (v, c, a) become (a, b, c) in the first one's slot.
-        let edges = [star[0], star[1], star[2]];
+        let mut star = self.star(v);
+        let edges = [(); 3].map(|_| star.next().expect("a star of three"));
         let [a, b, c] = edges.map(|e| self.dest(e));
         let outer = edges.map(|e| self.twin(e.next()));
         let [t0, t1, t2] = edges.map(EdgeId::triangle);
@@ -94,22 +136,25 @@ impl Mesh {
             .find_edge(a, b)
             .expect("the merged triangle")
             .triangle();
-        let made = self.restore_hole::<P>(start, &link, stack);
+        self.restore_hole::<P>(start, link, stack, flipped, made);
         debug_assert!(made.len() >= link.len() - 2);
-        Some(made)
+        true
     }
 
     /// After a vertex is taken out: Lawson flips, segments fixed, from `stack` and from the
     /// edges of the triangles inside its old link `link` (found from triangle `start`, see
-    /// [`Self::hole`]). Returns those triangles and the ones flips made, without repeats.
+    /// [`Self::hole`]). Puts in `made` (empty) those triangles and the ones flips made,
+    /// without repeats; `flipped`: scratch space.
     pub(super) fn restore_hole<P: Predicates>(
         &mut self,
         start: TriangleId,
         link: &[VertexId],
-        mut stack: Vec<(VertexId, VertexId)>,
-    ) -> Vec<TriangleId> {
-        let hole = self.hole(start, link);
-        for &t in &hole {
+        stack: &mut Vec<(VertexId, VertexId)>,
+        flipped: &mut Vec<TriangleId>,
+        made: &mut Vec<TriangleId>,
+    ) {
+        self.hole(start, link, made);
+        for &t in made.iter() {
             stack.extend(
                 t.edges()
                     .into_iter()
@@ -117,31 +162,32 @@ impl Mesh {
                     .filter(|&(x, y)| x != GHOST && y != GHOST),
             );
         }
+        flipped.clear();
         let mut lawson = BetweenSegments {
             record: true,
-            flipped: Vec::new(),
+            flipped: std::mem::take(flipped),
         };
-        self.legalize::<P, _>(&mut stack, &mut lawson);
+        self.legalize::<P, _>(stack, &mut lawson);
         // Flips keep their two slots: the hole's slots are still its triangles (and, were
         // rounding to flip an edge of its polygon, the flipped ones beyond).
-        let mut made = hole;
-        made.extend(lawson.flipped);
+        made.extend_from_slice(&lawson.flipped);
+        *flipped = lawson.flipped;
         made.sort_unstable();
         made.dedup();
-        made
     }
 
     /// The triangles inside the polygon `link` (a vertex's old star, counter-clockwise) from
     /// triangle `start` inside it: across every edge that is not one of the polygon's, into
-    /// triangles whose corners are all on it.
-    pub(super) fn hole(&self, start: TriangleId, link: &[VertexId]) -> Vec<TriangleId> {
+    /// triangles whose corners are all on it. Into `hole` (empty).
+    pub(super) fn hole(&self, start: TriangleId, link: &[VertexId], hole: &mut Vec<TriangleId>) {
         let k = link.len();
         let polygon_edge = |x: VertexId, y: VertexId| {
             link.iter()
                 .position(|&w| w == x)
                 .is_some_and(|i| link[(i + 1) % k] == y || link[(i + k - 1) % k] == y)
         };
-        let mut hole = vec![start];
+        debug_assert!(hole.is_empty());
+        hole.push(start);
         let mut i = 0;
         while i < hole.len() {
             let t = hole[i];
@@ -156,7 +202,6 @@ impl Mesh {
                 }
             }
         }
-        hole
     }
 
     /// Frees triangle slot `t`, which no half-edge's twin and no vertex edge refers to: the

@@ -29,6 +29,7 @@ mod star;
 mod unsplit;
 mod walk;
 
+pub use delete::Deletion;
 pub use ids::{EdgeId, TriangleId, VertexId};
 pub use legalize::{BetweenSegments, Ghosts, Lawson, Quad};
 pub use star::Star;

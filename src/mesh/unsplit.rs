@@ -136,6 +136,8 @@ impl Mesh {
             .find_edge(a, b)
             .expect("the merged subsegment")
             .triangle();
-        Some(self.restore_hole::<P>(start, &link, stack))
+        let mut made = Vec::new();
+        self.restore_hole::<P>(start, &link, &mut stack, &mut Vec::new(), &mut made);
+        Some(made)
     }
 }

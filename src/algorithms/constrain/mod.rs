@@ -168,6 +168,11 @@ impl<P: Predicates> Constrainer<P> {
         self.inserter.delete_vertex(v)
     }
 
+    /// [`Self::delete_vertex`] into `made` (cleared first): whether `v` was deleted.
+    pub fn delete_vertex_into(&mut self, v: VertexId, made: &mut Vec<TriangleId>) -> bool {
+        self.inserter.delete_vertex_into(v, made)
+    }
+
     /// Deletes vertex `v` between two subsegments of one segment, which become one, keeping
     /// the triangulation constrained Delaunay (see [`Mesh::delete_segment_vertex`]): the
     /// triangles made, or `None` when it stays.

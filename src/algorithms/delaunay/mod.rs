@@ -21,7 +21,9 @@ pub mod order;
 use bulk::triangulate_in_order;
 
 use crate::geometry::{Point, Predicates};
-use crate::mesh::{EdgeId, Ghosts, Lawson, Mesh, Quad, TriangleId, VertexId, GHOST, NONE};
+use crate::mesh::{
+    Deletion, EdgeId, Ghosts, Lawson, Mesh, Quad, TriangleId, VertexId, GHOST, NONE,
+};
 
 /// Where a point lies in the current triangulation.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -131,6 +133,8 @@ pub struct Inserter<P: Predicates> {
     last: TriangleId,
     rng: u64,
     stack: Vec<EdgeId>,
+    /// The buffers of vertex deletion.
+    deletion: Deletion,
     _predicates: std::marker::PhantomData<P>,
 }
 
@@ -141,6 +145,7 @@ impl<P: Predicates> Inserter<P> {
             last: TriangleId::new(0),
             rng: 0x2545_F491_4F6C_DD1D,
             stack: Vec::with_capacity(64),
+            deletion: Deletion::default(),
             _predicates: Default::default(),
         }
     }
@@ -194,9 +199,21 @@ impl<P: Predicates> Inserter<P> {
     /// Deletes vertex `v` (see [`Mesh::delete_vertex`]); the next walk starts in the triangles
     /// made (the one it would have started from may have moved to another slot).
     pub fn delete_vertex(&mut self, v: VertexId) -> Option<Vec<TriangleId>> {
-        let made = self.mesh.delete_vertex::<P>(v)?;
+        let mut made = Vec::new();
+        self.delete_vertex_into(v, &mut made).then_some(made)
+    }
+
+    /// [`Self::delete_vertex`] into `made` (cleared first): whether `v` was deleted. Allocates
+    /// nothing once the buffers have grown.
+    pub fn delete_vertex_into(&mut self, v: VertexId, made: &mut Vec<TriangleId>) -> bool {
+        if !self
+            .mesh
+            .delete_vertex_with::<P>(v, &mut self.deletion, made)
+        {
+            return false;
+        }
         self.last = made[0];
-        Some(made)
+        true
     }
 
     /// Deletes vertex `v` between two subsegments of one segment (see

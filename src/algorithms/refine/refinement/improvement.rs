@@ -99,6 +99,8 @@ const IMPROVE_UP_TO: usize = 1 << 16;
 pub(super) struct Scratch {
     /// The deleted vertex's link.
     neighbours: Vec<VertexId>,
+    /// The triangles that fill its old star.
+    made: Vec<TriangleId>,
     /// The free corners of the bad triangles a deletion made.
     candidates: Vec<VertexId>,
     /// The vertices moved after a deletion, each with its point before.
@@ -400,16 +402,20 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         neighbours.clear();
         let mesh = self.mesh();
         neighbours.extend(mesh.star(w).map(|e| mesh.dest(e)).filter(|&v| v != GHOST));
-        let deleted = self.try_deleting_around(w, &neighbours, floor, link, search);
+        let mut made = std::mem::take(&mut self.improving.made);
+        let deleted = self.try_deleting_around(w, &neighbours, &mut made, floor, link, search);
         self.improving.neighbours = neighbours;
+        self.improving.made = made;
         deleted
     }
 
-    /// [`Self::try_deleting`] of deletable `w`, whose link is `neighbours`.
+    /// [`Self::try_deleting`] of deletable `w`, whose link is `neighbours`; `made`: scratch
+    /// space for the triangles a deletion makes.
     fn try_deleting_around(
         &mut self,
         w: VertexId,
         neighbours: &[VertexId],
+        made: &mut Vec<TriangleId>,
         floor: f64,
         link: &mut Vec<(Point, Point, bool)>,
         search: usize,
@@ -420,9 +426,10 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         // the deleted vertex's link no worse.
         let before = (self.settings.quality.no_steiner_on_segments > 0)
             .then(|| self.quality_around(neighbours, floor));
-        let Some(made) = self.cdt.delete_vertex(w) else {
+        if !self.cdt.delete_vertex_into(w, made) {
             return false;
-        };
+        }
+        let made = &made[..];
         let no_worse = |this: &Self| {
             before.is_some_and(|b| {
                 made.iter().all(|&t| {
@@ -435,7 +442,7 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         };
         if made.iter().all(|&t| self.good_enough(t, floor))
             || no_worse(self)
-            || self.smooth_after_deletion(&made, neighbours, floor, link, search, before)
+            || self.smooth_after_deletion(made, neighbours, floor, link, search, before)
         {
             self.kinds[w.index()] = VertexKind::Deleted;
             return true;
