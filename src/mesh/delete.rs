@@ -29,7 +29,7 @@ pub struct Deletion {
     /// The planned flips: each link vertex that leaves, with the diagonal it leaves.
     plan: Vec<(VertexId, (VertexId, VertexId))>,
     /// The Lawson stack.
-    stack: Vec<(VertexId, VertexId)>,
+    stack: Vec<(VertexId, VertexId, EdgeId)>,
     /// The triangles of the flips.
     flipped: Vec<TriangleId>,
 }
@@ -88,7 +88,8 @@ impl Mesh {
         } = scratch;
         link.clear();
         link.extend(self.star(v).map(|e| self.dest(e)));
-        // The edges to check afterwards, as vertex pairs (flips renumber half-edges).
+        // The edges to check afterwards, as vertex pairs (flips renumber half-edges), each with
+        // its half-edge as a hint.
         stack.clear();
         // The flips planned on the link alone, so that a degenerate star leaves the mesh as it
         // is. Flipping edge v → w_i, in (v, w_i, w_i+1) and (w_i, v, w_i-1), makes them
@@ -112,10 +113,11 @@ impl Mesh {
             plan.push((ring[i], (ring[(i + k - 1) % k], ring[(i + 1) % k])));
             ring.remove(i);
         }
-        for &(w, diagonal) in plan.iter() {
+        for &(w, (x, y)) in plan.iter() {
             let e = self.find_edge(v, w).expect("an edge of the star");
-            self.flip(e);
-            stack.push(diagonal);
+            // (v, x, y) and (x, w, y): the diagonal is the first one's slot 1.
+            let [t, _] = self.flip(e);
+            stack.push((x, y, t.edge(1)));
         }
         // Degree 3: (v, a, b), (v, b, c), (v, c, a) become (a, b, c) in the first one's slot.
         let mut star = self.star(v);
@@ -149,7 +151,7 @@ impl Mesh {
         &mut self,
         start: TriangleId,
         link: &[VertexId],
-        stack: &mut Vec<(VertexId, VertexId)>,
+        stack: &mut Vec<(VertexId, VertexId, EdgeId)>,
         flipped: &mut Vec<TriangleId>,
         made: &mut Vec<TriangleId>,
     ) {
@@ -158,8 +160,8 @@ impl Mesh {
             stack.extend(
                 t.edges()
                     .into_iter()
-                    .map(|e| (self.origin(e), self.dest(e)))
-                    .filter(|&(x, y)| x != GHOST && y != GHOST),
+                    .map(|e| (self.origin(e), self.dest(e), e))
+                    .filter(|&(x, y, _)| x != GHOST && y != GHOST),
             );
         }
         flipped.clear();

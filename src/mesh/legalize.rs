@@ -61,7 +61,8 @@ pub trait Lawson {
 }
 
 /// The Lawson policy of the constrained restore: the stack holds vertex pairs (flips renumber
-/// half-edges, an edge is found again by its ends), segments stay, edges next to the outside
+/// half-edges, an edge is found again by its ends, [`Mesh::find_edge_hinted`], each with the
+/// half-edge it was when stacked, or [`EdgeId::NONE`]), segments stay, edges next to the outside
 /// stay, and a flip stacks its quadrilateral's four outer edges (Lawson flips that never cross
 /// a segment give the constrained Delaunay triangulation: Chew 1989; Lee and Lin 1986). Used by
 /// constrain's restore and by vertex deletion ([`Mesh::delete_vertex`]), which also wants the
@@ -75,10 +76,11 @@ pub struct BetweenSegments {
 }
 
 impl Lawson for BetweenSegments {
-    type Item = (VertexId, VertexId);
+    type Item = (VertexId, VertexId, EdgeId);
 
-    fn edge(&self, mesh: &Mesh, (u, v): (VertexId, VertexId)) -> Option<EdgeId> {
-        mesh.find_edge(u, v)
+    #[inline(always)]
+    fn edge(&self, mesh: &Mesh, (u, v, hint): (VertexId, VertexId, EdgeId)) -> Option<EdgeId> {
+        mesh.find_edge_hinted(u, v, hint)
     }
 
     fn is_fixed(&self, mesh: &Mesh, e: EdgeId) -> bool {
@@ -93,10 +95,17 @@ impl Lawson for BetweenSegments {
         &mut self,
         quad: &Quad,
         flipped: [TriangleId; 2],
-        stack: &mut Vec<(VertexId, VertexId)>,
+        stack: &mut Vec<(VertexId, VertexId, EdgeId)>,
     ) {
         let Quad { a, b, c, d, .. } = *quad;
-        stack.extend_from_slice(&[(a, d), (d, b), (b, c), (c, a)]);
+        // (a, d, c) and (d, b, c), slot 0 opposite `c`.
+        let [t1, t2] = flipped;
+        stack.extend_from_slice(&[
+            (a, d, t1.edge(0)),
+            (d, b, t2.edge(0)),
+            (b, c, t2.edge(1)),
+            (c, a, t1.edge(2)),
+        ]);
         if self.record {
             self.flipped.extend_from_slice(&flipped);
         }

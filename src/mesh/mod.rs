@@ -207,6 +207,20 @@ impl Mesh {
         self.star(a).find(|&e| self.dest(e) == b)
     }
 
+    /// [`Self::find_edge`] given a guess: `hint` if it is a half-edge from `a` to `b` (any
+    /// half-edge id, [`EdgeId::NONE`] included), without the walk around `a`. The same
+    /// half-edge either way, since a mesh has at most one from `a` to `b`.
+    #[inline(always)]
+    pub fn find_edge_hinted(&self, a: VertexId, b: VertexId, hint: EdgeId) -> Option<EdgeId> {
+        // A valid `hint` first: its successor in its triangle is then valid too.
+        if self.corners.get(hint.index()) == Some(&a.raw())
+            && self.corners[hint.next().index()] == b.raw()
+        {
+            return Some(hint);
+        }
+        self.find_edge(a, b)
+    }
+
     /// The corner array, read-only: three `u32` corners per triangle slot ([`GHOST`] is
     /// `u32::MAX`), for the output numbering at the edges of the crate.
     #[inline(always)]

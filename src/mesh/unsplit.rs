@@ -105,11 +105,12 @@ impl Mesh {
             }
         }
         let (a, b) = (link[i], link[j]);
-        let mut stack: Vec<(VertexId, VertexId)> = Vec::new();
-        for (w, diagonal) in plan {
+        let mut stack: Vec<(VertexId, VertexId, EdgeId)> = Vec::new();
+        for (w, (x, y)) in plan {
             let e = self.find_edge(v, w).expect("an edge of the star");
-            self.flip(e);
-            stack.push(diagonal);
+            // (v, x, y) and (x, w, y): the diagonal is the first one's slot 1.
+            let [t, _] = self.flip(e);
+            stack.push((x, y, t.edge(1)));
         }
         // Degree 4: v→a, v→l, v→b, v→r counter-clockwise.
         let e_a = self.find_edge(v, a).expect("a subsegment");

@@ -84,8 +84,8 @@ impl<P: Predicates> Constrainer<P> {
                 self.scratch.lawson = edges;
                 return false;
             }
-            edges.push((v, a));
-            edges.push((a, b));
+            edges.push((v, a, e));
+            edges.push((a, b, e.next()));
         }
         self.inserter.mesh_mut().move_point(v, p);
         self.inserter

@@ -98,7 +98,7 @@ struct Scratch {
     cavity: CavityScratch,
     /// The Lawson stack of [`Constrainer::move_vertex`], which the improvement of a refined
     /// mesh calls for nearly every vertex it tries.
-    lawson: Vec<(VertexId, VertexId)>,
+    lawson: Vec<(VertexId, VertexId, EdgeId)>,
 }
 
 impl<P: Predicates> Constrainer<P> {
@@ -470,7 +470,10 @@ impl<P: Predicates> Constrainer<P> {
 
     /// Lawson flips from the given edges until every non-segment edge is locally Delaunay.
     pub fn restore_delaunay(&mut self, edges: Vec<(VertexId, VertexId)>) {
-        let mut stack = edges;
+        let mut stack: Vec<_> = edges
+            .into_iter()
+            .map(|(u, v)| (u, v, EdgeId::NONE))
+            .collect();
         self.inserter
             .mesh_mut()
             .legalize::<P, _>(&mut stack, &mut BetweenSegments::default());
