@@ -50,6 +50,16 @@ pub trait Predicates: Copy + Send + Sync + 'static {
         best
     }
 
+    /// A number of the sign of [`Self::orient2d`]`(p, a, b)`, for a caller that computes
+    /// `(a − p) × (b − p)` itself: exact predicates compute `orient2d(a, b, p)`, whose exact
+    /// sign is the same (a cyclic shift of the points) and whose filter's determinant is that
+    /// product with the same operations, so the compiler computes it once; plain floating point
+    /// computes `orient2d(p, a, b)` itself, whose rounding may differ.
+    #[inline(always)]
+    fn orient2d_sign_from(p: Point, a: Point, b: Point) -> f64 {
+        Self::orient2d(p, a, b)
+    }
+
     /// [`Predicates::smallest_circle`] and whether its choice `c` lies strictly left of
     /// `u → w` (`orient2d(u, w, c) > 0`).
     #[inline]
@@ -260,6 +270,11 @@ impl PencilFrame {
 }
 
 impl Predicates for Exact {
+    #[inline(always)]
+    fn orient2d_sign_from(p: Point, a: Point, b: Point) -> f64 {
+        Self::orient2d(a, b, p)
+    }
+
     /// The floating-point filter is evaluated here, inline; only when it cannot decide the sign
     /// does `robust` run the adaptive exact stages. The filter decides nearly every test.
     #[inline(always)]

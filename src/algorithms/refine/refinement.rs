@@ -396,12 +396,21 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
     }
 
     /// Whether triangle `t` at `[pa, pb, pc]` is too big for the area bounds (global or its
-    /// region's) or bad by the user's test.
-    fn too_big(&self, t: TriangleId, [pa, pb, pc]: [Point; 3]) -> bool {
+    /// region's) or bad by the user's test. Inline where there are none (no call then, in the
+    /// improvement's loops), out of line where there are.
+    #[inline(always)]
+    fn too_big(&self, t: TriangleId, points: [Point; 3]) -> bool {
         let quality = self.settings.quality;
         if quality.max_area.is_none() && !quality.variable_area && quality.user_test.is_none() {
             return false;
         }
+        self.too_big_by_bounds(t, points)
+    }
+
+    /// [`Self::too_big`] where there are area bounds or a user's test.
+    #[inline(never)]
+    fn too_big_by_bounds(&self, t: TriangleId, [pa, pb, pc]: [Point; 3]) -> bool {
+        let quality = self.settings.quality;
         let area = 0.5 * P::orient2d(pa, pb, pc);
         let regional = if quality.variable_area {
             self.settings

@@ -292,35 +292,8 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         sides.extend(link.iter().map(|&(a, b, _)| squared_distance(a, b)));
         let this = &*self;
         let mut first = 0;
-        let mut value = |p: Point, bar: f64| {
-            if p == pw {
-                return -1.0;
-            }
-            let mut smallest = f64::INFINITY;
-            let mut i = first;
-            for _ in 0..link.len() {
-                let (a, b, _) = link[i];
-                let s = min_angle_sin2_given_bc([p, a, b], sides[i]);
-                if s <= bar || P::orient2d(p, a, b) <= 0.0 {
-                    first = i;
-                    return -1.0;
-                }
-                // `smallest.min(s)` without its NaN handling: the same value, since `smallest`
-                // is never NaN and a NaN `s` is skipped either way.
-                if s < smallest {
-                    smallest = s;
-                }
-                i += 1;
-                if i == link.len() {
-                    i = 0;
-                }
-            }
-            if this.may_move_to_ccw(p, t, link) {
-                smallest
-            } else {
-                -1.0
-            }
-        };
+        let mut value =
+            |p: Point, bar: f64| this.place_value(p, bar, pw, t, link, &sides, &mut first);
         let n = link.len() as f64;
         let centroid = link.iter().fold([0.0, 0.0], |c, &(a, _, _)| {
             [c[0] + (a[0] - pw[0]) / n, c[1] + (a[1] - pw[1]) / n]
@@ -356,6 +329,52 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         }
         self.improving.sides = sides;
         (best, best_value)
+    }
+
+    /// The value of place `p` for [`Self::best_place`] (the vertex at `pw`, in triangle `t`'s
+    /// region, with link `link`, whose edges' squared lengths are `sides`): its star's smallest
+    /// angle's sine squared, computed only as far as it can beat `bar` (-1 where it cannot, or
+    /// where the move is not allowed). The triangles are tried from the `first`, which is set to
+    /// the one that fails. Inline in both of the search's loops (no call per place).
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn place_value(
+        &self,
+        p: Point,
+        bar: f64,
+        pw: Point,
+        t: TriangleId,
+        link: &[(Point, Point, bool)],
+        sides: &[f64],
+        first: &mut usize,
+    ) -> f64 {
+        if p == pw {
+            return -1.0;
+        }
+        let mut smallest = f64::INFINITY;
+        let mut i = *first;
+        for _ in 0..link.len() {
+            let (a, b, _) = link[i];
+            let s = min_angle_sin2_given_bc([p, a, b], sides[i]);
+            if s <= bar || P::orient2d_sign_from(p, a, b) <= 0.0 {
+                *first = i;
+                return -1.0;
+            }
+            // `smallest.min(s)` without its NaN handling: the same value, since `smallest`
+            // is never NaN and a NaN `s` is skipped either way.
+            if s < smallest {
+                smallest = s;
+            }
+            i += 1;
+            if i == link.len() {
+                i = 0;
+            }
+        }
+        if self.may_move_to_ccw(p, t, link) {
+            smallest
+        } else {
+            -1.0
+        }
     }
 
     /// Whether free vertex of triangle `t`'s region, with link `link`, may be moved to `p`,
