@@ -307,10 +307,7 @@ impl<P: Predicates> Refinement<'_, '_, P> {
                 break;
             }
         }
-        let shortest = link
-            .iter()
-            .map(|&(a, b, _)| (a[0] - b[0]).hypot(a[1] - b[1]))
-            .fold(f64::INFINITY, f64::min);
+        let shortest = shortest_side(link, &sides);
         let (mut step, last) = (0.25 * shortest, SEARCH_RESOLUTION * shortest);
         let mut evaluations = 0;
         while step >= last && evaluations < search {
@@ -387,8 +384,12 @@ impl<P: Predicates> Refinement<'_, '_, P> {
     }
 
     /// Moves free vertex `w` to `p` in its star's kernel, its attributes interpolated there
-    /// from the star's triangle that holds `p`.
+    /// from the star's triangle that holds `p` (none to interpolate: no search for it).
     fn move_free_vertex(&mut self, w: VertexId, p: Point) {
+        if self.attributes.count() == 0 {
+            self.cdt.move_vertex(w, p);
+            return;
+        }
         let mesh = self.mesh();
         let holder = mesh.star(w).map(|e| e.triangle()).find(|&t| {
             let [a, b, c] = mesh.triangle(t).map(|v| mesh.point(v));
@@ -645,6 +646,27 @@ impl<P: Predicates> Refinement<'_, '_, P> {
             .min(1.0)
             .max(theta)
     }
+}
+
+/// The length of the shortest of the edges `(a, b)` of `link`, whose squared lengths are
+/// `sides`: the smallest `hypot`, taken only over the edges whose squared length is within a
+/// relative 1e-9 of the smallest (the others' lengths are larger, by far more than the
+/// rounding of either: the same minimum), unless the squares may have overflowed or lost
+/// precision below the normal range.
+fn shortest_side(link: &[(Point, Point, bool)], sides: &[f64]) -> f64 {
+    let length = |&(a, b, _): &(Point, Point, bool)| (a[0] - b[0]).hypot(a[1] - b[1]);
+    let near = sides
+        .iter()
+        .fold(f64::INFINITY, |m, &s| if s < m { s } else { m });
+    if !(1e-280..=1e280).contains(&near) {
+        return link.iter().map(length).fold(f64::INFINITY, f64::min);
+    }
+    let within = near * (1.0 + 1e-9);
+    link.iter()
+        .zip(sides)
+        .filter(|&(_, &s)| s <= within)
+        .map(|(edge, _)| length(edge))
+        .fold(f64::INFINITY, f64::min)
 }
 
 /// The sine squared of the smallest angle of the triangles `(p, a, b)` over the link `link`.
