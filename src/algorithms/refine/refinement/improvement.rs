@@ -349,22 +349,33 @@ impl<P: Predicates> Refinement<'_, '_, P> {
             return -1.0;
         }
         let mut smallest = f64::INFINITY;
-        let mut i = *first;
-        for _ in 0..link.len() {
-            let (a, b, _) = link[i];
-            let s = min_angle_sin2_given_bc([p, a, b], sides[i]);
+        // The triangle over link edge `(a, b)` (squared length `side`): whether it can beat
+        // `bar`.
+        let mut beats = |&(a, b, _): &(Point, Point, bool), side: f64| {
+            let s = min_angle_sin2_given_bc([p, a, b], side);
             if s <= bar || P::orient2d_sign_from(p, a, b) <= 0.0 {
-                *first = i;
-                return -1.0;
+                return false;
             }
             // `smallest.min(s)` without its NaN handling: the same value, since `smallest`
             // is never NaN and a NaN `s` is skipped either way.
             if s < smallest {
                 smallest = s;
             }
-            i += 1;
-            if i == link.len() {
-                i = 0;
+            true
+        };
+        // From `first` to the end, then from the start to `first`: the slices' iterators
+        // rather than an index wrapped around (no bounds checks, no wrap test).
+        let start = *first;
+        for (i, (edge, &side)) in link[start..].iter().zip(&sides[start..]).enumerate() {
+            if !beats(edge, side) {
+                *first = start + i;
+                return -1.0;
+            }
+        }
+        for (i, (edge, &side)) in link[..start].iter().zip(&sides[..start]).enumerate() {
+            if !beats(edge, side) {
+                *first = i;
+                return -1.0;
             }
         }
         if self.may_move_to_ccw(p, t, link) {
