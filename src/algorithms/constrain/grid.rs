@@ -72,6 +72,20 @@ impl<P: Predicates> Constrainer<P> {
     /// boundary where it was, as a vertex moved along a hull segment does), and restores the
     /// constrained Delaunay property by flips from its star and link; returns whether it moved.
     pub fn move_vertex(&mut self, v: VertexId, p: Point) -> bool {
+        self.shift_vertex::<true>(v, p)
+    }
+
+    /// [`Self::move_vertex`] where the caller has checked that `p` is in the kernel of `v`'s
+    /// star: every triangle `(p, a, b)` over its link, `a` and `b` not the vertex at infinity,
+    /// has `orient2d` positive (the improvement's search checks each place it tries so).
+    pub fn move_vertex_in_kernel(&mut self, v: VertexId, p: Point) {
+        let moved = self.shift_vertex::<{ cfg!(debug_assertions) }>(v, p);
+        debug_assert!(moved, "{p:?} is not in the kernel of {v}'s star");
+    }
+
+    /// [`Self::move_vertex`], which checks the kernel only with `CHECK`.
+    #[inline(always)]
+    fn shift_vertex<const CHECK: bool>(&mut self, v: VertexId, p: Point) -> bool {
         let mut edges = std::mem::take(&mut self.scratch.lawson);
         edges.clear();
         let mesh = self.inserter.mesh();
@@ -80,7 +94,7 @@ impl<P: Predicates> Constrainer<P> {
             if a == GHOST || b == GHOST {
                 continue;
             }
-            if P::orient2d(p, mesh.point(a), mesh.point(b)) <= 0.0 {
+            if CHECK && P::orient2d(p, mesh.point(a), mesh.point(b)) <= 0.0 {
                 self.scratch.lawson = edges;
                 return false;
             }

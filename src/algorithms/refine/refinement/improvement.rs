@@ -398,7 +398,7 @@ impl<P: Predicates> Refinement<'_, '_, P> {
     /// from the star's triangle that holds `p` (none to interpolate: no search for it).
     fn move_free_vertex(&mut self, w: VertexId, p: Point) {
         if self.attributes.count() == 0 {
-            self.cdt.move_vertex(w, p);
+            self.cdt.move_vertex_in_kernel(w, p);
             return;
         }
         let mesh = self.mesh();
@@ -413,7 +413,7 @@ impl<P: Predicates> Refinement<'_, '_, P> {
             let (xi, eta) = frame_coordinates(corners.map(|v| mesh.point(v)), p);
             self.attributes.set_in_triangle(w, corners, xi, eta);
         }
-        self.cdt.move_vertex(w, p);
+        self.cdt.move_vertex_in_kernel(w, p);
     }
 
     /// Deletes free vertex `w` if the triangles that fill its star are good enough (smallest
