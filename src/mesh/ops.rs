@@ -328,7 +328,29 @@ impl Mesh {
         self.link_raw(3 * t2, tw_qb);
         self.link_raw(3 * t2 + 1, tw_bp);
         self.link_raw(3 * t1 + 1, 3 * t2 + 2);
-        self.refresh(&[t1, t2], &[3 * t1 + 1, 3 * t2 + 2]);
+        // What `refresh(&[t1, t2], &[3 * t1 + 1, 3 * t2 + 2])` does, written out: each
+        // corner's outgoing half-edge (the last one `refresh` would write: `q` and `p` in
+        // `t2`), the outer half-edges' segment ids from their twins, none on the diagonal.
+        if !self.vertex_edge.is_empty() {
+            for (v, h) in [(a, 3 * t1), (q, 3 * t2), (b, 3 * t2 + 1), (p, 3 * t2 + 2)] {
+                if v != G {
+                    self.vertex_edge[v as usize] = h;
+                }
+            }
+        }
+        if !self.segment.is_empty() {
+            self.segment.resize(self.corners.len(), NONE);
+            for (h, outer) in [
+                (3 * t1, tw_aq),
+                (3 * t1 + 2, tw_pa),
+                (3 * t2, tw_qb),
+                (3 * t2 + 1, tw_bp),
+            ] {
+                self.segment[h as usize] = self.segment[outer as usize];
+            }
+            self.segment[3 * t1 as usize + 1] = NONE;
+            self.segment[3 * t2 as usize + 2] = NONE;
+        }
         if !self.tag.is_empty() {
             let (tag1, tag2) = (self.tag[t1 as usize], self.tag[t2 as usize]);
             if tag1 != tag2 {
