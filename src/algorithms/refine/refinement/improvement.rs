@@ -233,6 +233,18 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         }
     }
 
+    /// Fills `link` with vertex `w`'s star (each triangle's edge opposite `w`, and whether that
+    /// edge is a segment) and returns one of its triangles (`None` for a vertex in none).
+    fn read_link(&self, w: VertexId, link: &mut Vec<(Point, Point, bool)>) -> Option<TriangleId> {
+        let mesh = self.mesh();
+        link.clear();
+        link.extend(mesh.star(w).map(|e| {
+            let (a, b) = (mesh.dest(e), mesh.apex(e));
+            (mesh.point(a), mesh.point(b), mesh.is_segment(e.next()))
+        }));
+        mesh.vertex_edge(w).map(|e| e.triangle())
+    }
+
     /// Moves free vertex `w` where its star's smallest angle is larger (see [`Self::best_place`])
     /// if that raises it by [`GAIN`] to at least `floor` (sine squared). `link`: scratch space.
     /// Whether it moved.
@@ -246,14 +258,8 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         if self.polling.poll(self.work, || 0) || !self.mesh().is_deletable(w) {
             return false;
         }
-        let mesh = self.mesh();
-        let pw = mesh.point(w);
-        link.clear();
-        link.extend(mesh.star(w).map(|e| {
-            let (a, b) = (mesh.dest(e), mesh.apex(e));
-            (mesh.point(a), mesh.point(b), mesh.is_segment(e.next()))
-        }));
-        let Some(t) = mesh.vertex_edge(w).map(|e| e.triangle()) else {
+        let pw = self.mesh().point(w);
+        let Some(t) = self.read_link(w, link) else {
             return false;
         };
         let old = star_min_sin2(pw, link);
@@ -533,14 +539,8 @@ impl<P: Predicates> Refinement<'_, '_, P> {
                     if !self.mesh().is_deletable(x) {
                         continue;
                     }
-                    let mesh = self.mesh();
-                    let px = mesh.point(x);
-                    link.clear();
-                    link.extend(mesh.star(x).map(|e| {
-                        let (a, b) = (mesh.dest(e), mesh.apex(e));
-                        (mesh.point(a), mesh.point(b), mesh.is_segment(e.next()))
-                    }));
-                    let Some(t) = mesh.vertex_edge(x).map(|e| e.triangle()) else {
+                    let px = self.mesh().point(x);
+                    let Some(t) = self.read_link(x, link) else {
                         continue;
                     };
                     let old = star_min_sin2(px, link);
