@@ -42,7 +42,7 @@
 //! again, compared two orders of refinement above 30° and split the worst triangle again
 //! while that raised the smallest angle: 0.80× Triangle's triangles, a smallest angle at least
 //! Triangle's on all 128 cases of the table, at 27× Triangle's time; this pass: 0.83×, 119 of
-//! 128 (the others within 0.4°), at 7× (the refinement alone: 1.8×, 0.99× the triangles).
+//! 128 (the others within 0.4°), at 5.2× (the refinement alone: 1.8×, 0.99× the triangles).
 
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
