@@ -195,6 +195,11 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
     }
 
     /// Sets the angle bound θ (degrees): the bad-angle test, the lens and the off-centre.
+    /// The sine squared of the angle bound (0 for none).
+    pub(super) fn angle_sin2(&self) -> f64 {
+        self.angle.sin2()
+    }
+
     pub(super) fn set_angle(&mut self, degrees: f64) {
         self.angle = AngleBound::new(degrees);
         self.encroachment = Encroachment::new(degrees, self.settings.conforming);
