@@ -153,29 +153,21 @@ class Library:
         Both are read on the calling thread right after the call, because the library keeps
         them per thread.
         """
-        if progress is None:
-            code = self._reentrant(
-                switches,
-                _byref(tin),
-                _byref(tout),
-                _byref(vorout),
-                unsuitable if unsuitable is not None else _NO_UNSUITABLE,
-                None,
-                _byref(cancel),
-            )
-        elif self._progress is None:
+        if progress is not None and self._progress is None:
             raise OSError(f"{self.path} has no triangulate_progress: rebuild the library")
+        arguments = (
+            switches,
+            _byref(tin),
+            _byref(tout),
+            _byref(vorout),
+            unsuitable if unsuitable is not None else _NO_UNSUITABLE,
+            None,
+            _byref(cancel),
+        )
+        if progress is None:
+            code = self._reentrant(*arguments)
         else:
-            code = self._progress(
-                switches,
-                _byref(tin),
-                _byref(tout),
-                _byref(vorout),
-                unsuitable if unsuitable is not None else _NO_UNSUITABLE,
-                None,
-                _byref(cancel),
-                progress,
-            )
+            code = self._progress(*arguments, progress)
         if code == 0:
             text = self._last_warning() if self._last_warning is not None else None
             return 0, "", text.decode("utf-8", "replace") if text else ""
