@@ -268,9 +268,9 @@ impl<P: Predicates> Driver<'_, '_, P> {
             }
             self.refinement.exchange(&mut aside);
         }
-        drop(aside); // the straight run's state is no longer needed
-                     // Live: the unrefined state, straight toward the angle, worst angle first; `unrefined`:
-                     // the 28.6° mesh.
+        // The straight run's state is no longer needed. Live: the unrefined state, straight
+        // toward the angle, worst angle first; `unrefined`: the 28.6° mesh.
+        drop(aside);
         self.refinement.exchange(&mut unrefined);
         self.refinement.set_order(QueueOrder::WorstAngle);
         self.refinement.set_angle(angle);
