@@ -2,11 +2,13 @@
 //! Arithmetic and Fast Robust Geometric Predicates", 1997): a number held exactly as a sum of
 //! doubles of increasing magnitude that do not overlap, built from error-free sums and products.
 //!
-//! Here for the in-circle test of points whose coordinate differences are exact (the points of
-//! an in-circle tie are near one another, and the difference of two doubles within a factor two
-//! of each other is exact: Sterbenz's lemma). Then the determinant is a polynomial in doubles,
-//! and its exact value takes a few short expansions: a few hundred instructions, against the
-//! thousands of the `robust` crate's general adaptive stages (which clear some 20 KiB of
+//! Here for the in-circle test where the floating-point filter cannot decide: first in
+//! double-double arithmetic with an error bound of order u² of the permanent
+//! ([`incircle_in_double_double`]), which decides near ties; then, for ties of points whose
+//! coordinate differences are exact (the points of an in-circle tie are near one another, and
+//! the difference of two doubles within a factor two of each other is exact: Sterbenz's lemma),
+//! exactly: the determinant is a polynomial in doubles, and its value takes a few short
+//! expansions, against the `robust` crate's general adaptive stages (which clear some 20 KiB of
 //! buffers per call for the worst case of inexact differences).
 
 /// `a + b` and its rounding error, exactly (Knuth's two-sum).
@@ -166,6 +168,99 @@ pub fn incircle_of_exact_differences(
     Some(if n == 0 { 0.0 } else { det[n - 1] })
 }
 
+/// The error bound of [`incircle_in_double_double`] relative to the permanent: 128 u² (u = 2⁻⁵³,
+/// the unit roundoff), about twice what its steps can lose (~70 u², see there).
+const DOUBLE_DOUBLE_ERRBOUND: f64 = 128.0 * (f64::EPSILON / 2.0) * (f64::EPSILON / 2.0);
+
+/// A coordinate difference `a − b` exactly, as the rounded difference and its rounding error
+/// (at most u of it; zero where the difference is exact).
+type Difference = (f64, f64);
+
+/// `(x + ξ)² + (y + ψ)²` for differences `(x, ξ)`, `(y, ψ)` as `hi + lo` (`|lo| ≤ u |hi|`),
+/// within 21 u² of it (relative): the squares of the rounded differences exact, their sum's
+/// high part exact, the six small terms (together at most 4 u of the lift) in doubles, and
+/// `ξ² + ψ²` (at most u² of it) left out.
+#[inline(always)]
+fn lift((x, xi): Difference, (y, psi): Difference) -> (f64, f64) {
+    let (xx, xx_error) = two_product(x, x);
+    let (yy, yy_error) = two_product(y, y);
+    let (s, s_error) = two_sum(xx, yy);
+    let tails = 2.0 * (x * xi + y * psi);
+    two_sum(s, ((s_error + xx_error) + yy_error) + tails)
+}
+
+/// `p·s − q·r` for differences as `hi + lo` (`|lo| ≤ u |hi|`), within 28 u² Q of it (Q =
+/// |p·s| + |q·r| of the rounded differences): as [`lift`], the tails' cross terms in doubles,
+/// their products (at most 2 u² Q) left out.
+#[inline(always)]
+fn minor_double_double(
+    (p, p_tail): Difference,
+    (s, s_tail): Difference,
+    (q, q_tail): Difference,
+    (r, r_tail): Difference,
+) -> (f64, f64) {
+    let (ps, ps_error) = two_product(p, s);
+    let (qr, qr_error) = two_product(q, r);
+    let (d, d_error) = two_diff(ps, qr);
+    let tails = (p * s_tail + p_tail * s) - (q * r_tail + q_tail * r);
+    two_sum(d, ((d_error + ps_error) - qr_error) + tails)
+}
+
+/// `l · m` as a pair `hi + lo` (not renormalized), within 8.1 u² |l|·|m| of the product of the
+/// pairs: the high parts' product exact, the cross terms in doubles, `l.lo · m.lo` (≤ u² of it)
+/// left out.
+#[inline(always)]
+fn product_double_double(l: (f64, f64), m: (f64, f64)) -> (f64, f64) {
+    let (p, p_error) = two_product(l.0, m.0);
+    (p, p_error + (l.0 * m.1 + l.1 * m.0))
+}
+
+/// The sign of the in-circle determinant of `a`, `b`, `c`, `d` (as [`incircle_of_exact_differences`]),
+/// computed in double-double arithmetic from the exact coordinate differences, as a double of
+/// that sign when that decides it: `None` for a tie or a near tie within
+/// [`DOUBLE_DOUBLE_ERRBOUND`] of the permanent, or where the magnitudes leave the range this
+/// bound holds in (the exact stages decide then). A stage between the floating-point filter
+/// (error ~10 u of the permanent) and the exact ones, in the manner of Shewchuk's stage C (1997):
+/// rounded points in near-cocircular position (on a circle's arc, on a curve's samples) are
+/// typically some u of the permanent from a tie, which the filter cannot decide and this stage
+/// does, for a tenth of the expansions' work and a fiftieth of `robust`'s.
+///
+/// Error: each lift within 21 u² L, each minor within 28 u² Q (L a row's lift, Q the sum of
+/// its minor's two products' magnitudes), each row's product within 8.1 u² L·Q of theirs, so
+/// within 57 u² L·Q of the exact row term; the three rows' high parts are summed exactly and
+/// the five small parts (at most 3.1 u of the permanent P = Σ L·Q) in doubles, losing at most
+/// 12.6 u² P; in all under 70 u² P. Underflow adds at most 2⁻¹⁰⁷⁴ per operation, nothing
+/// against 128 u² P for P ≥ 2⁻⁹⁰⁰, and below 2⁹⁰⁰ nothing overflows.
+pub fn incircle_in_double_double(
+    a: [f64; 2],
+    b: [f64; 2],
+    c: [f64; 2],
+    d: [f64; 2],
+) -> Option<f64> {
+    let (adx, ady) = (two_diff(a[0], d[0]), two_diff(a[1], d[1]));
+    let (bdx, bdy) = (two_diff(b[0], d[0]), two_diff(b[1], d[1]));
+    let (cdx, cdy) = (two_diff(c[0], d[0]), two_diff(c[1], d[1]));
+    let (alift, blift, clift) = (lift(adx, ady), lift(bdx, bdy), lift(cdx, cdy));
+    let bc = minor_double_double(bdx, cdy, cdx, bdy);
+    let ca = minor_double_double(cdx, ady, adx, cdy);
+    let ab = minor_double_double(adx, bdy, bdx, ady);
+    let permanent = ((bdx.0 * cdy.0).abs() + (cdx.0 * bdy.0).abs()) * alift.0
+        + ((cdx.0 * ady.0).abs() + (adx.0 * cdy.0).abs()) * blift.0
+        + ((adx.0 * bdy.0).abs() + (bdx.0 * ady.0).abs()) * clift.0;
+    // Also false for a NaN or an infinity (an overflowed lift).
+    if !(2f64.powi(-900)..=2f64.powi(900)).contains(&permanent) {
+        return None;
+    }
+    let a = product_double_double(alift, bc);
+    let b = product_double_double(blift, ca);
+    let c = product_double_double(clift, ab);
+    let (s, s_error) = two_sum(a.0, b.0);
+    let (det, det_error) = two_sum(s, c.0);
+    let det = det + (((s_error + det_error) + (a.1 + b.1)) + c.1);
+    let bound = DOUBLE_DOUBLE_ERRBOUND * permanent;
+    (det > bound || -det > bound).then_some(det)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -234,6 +329,52 @@ mod tests {
         assert!(
             ties > 100,
             "only {ties} exact ties of four distinct points among them"
+        );
+    }
+
+    #[test]
+    fn the_double_double_stage_decides_near_ties_as_the_adaptive_predicate_does() {
+        // Four points on a circle's arc (rounded: some u of the permanent from a tie), at any
+        // magnitude and spread, the same points shifted by a tiny step along one axis, and
+        // grid squares' corners.
+        let mut state = 38u64;
+        let mut uniform =
+            || crate::algorithms::delaunay::order::splitmix64(&mut state) as f64 / u64::MAX as f64;
+        let (mut tried, mut decided) = (0, 0);
+        for case in 0..40_000usize {
+            let scale = 10f64.powi((case % 13) as i32 - 6);
+            let spread = 10f64.powi(-((case % 5) as i32));
+            let start = uniform() * std::f64::consts::PI;
+            let mut points = [[0.0; 2]; 4];
+            for p in points.iter_mut() {
+                let t = start + spread * uniform();
+                *p = [scale * t.cos(), scale * t.sin()];
+            }
+            if case % 4 == 3 {
+                points[3][case % 2] += points[3][case % 2] * f64::EPSILON * (case % 7) as f64;
+            }
+            if case % 8 == 2 {
+                // Corners of decimal grid squares: exact ties the stage must leave undecided.
+                let step = 0.1111 * scale;
+                for p in points.iter_mut() {
+                    let (i, j) = ((uniform() * 3.0).floor(), (uniform() * 3.0).floor());
+                    *p = [scale + i * step, scale + j * step];
+                }
+            }
+            let [a, b, c, d] = points;
+            tried += 1;
+            if let Some(det) = incircle_in_double_double(a, b, c, d) {
+                decided += 1;
+                assert_eq!(
+                    sign(det),
+                    robust_sign(a, b, c, d),
+                    "{a:?} {b:?} {c:?} {d:?}"
+                );
+            }
+        }
+        assert!(
+            decided * 10 > tried * 8,
+            "the stage decided only {decided} of {tried} near ties"
         );
     }
 

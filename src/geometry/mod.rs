@@ -361,8 +361,9 @@ fn exact_incircle_positive(
 
 /// The exact in-circle determinant's sign (as a double of that sign, or its value): in 128-bit
 /// integers where the four points have small integer coordinates (grids, the corners of unit
-/// squares: the cocircular inputs whose ties reach this stage most often), else in short
-/// expansions where the coordinate differences are exact ([`expansion`]: nearby points, as
+/// squares: the cocircular inputs whose ties reach this stage most often), else in
+/// double-double arithmetic where that decides (near ties: rounded points on a curve), else in
+/// short expansions where the coordinate differences are exact ([`expansion`]: nearby points, as
 /// ties are), else by `robust`'s adaptive stages, which zero some 20 KiB of expansions per
 /// call — some microseconds, more than a whole small triangulation.
 #[inline]
@@ -386,12 +387,15 @@ fn exact_incircle(
         return det.signum() as f64;
     }
     let point = |p: robust::Coord<f64>| [p.x, p.y];
-    if let Some(det) =
-        expansion::incircle_of_exact_differences(point(a), point(b), point(c), point(d))
-    {
+    let (a, b, c, d) = (point(a), point(b), point(c), point(d));
+    if let Some(det) = expansion::incircle_in_double_double(a, b, c, d) {
         return det;
     }
-    robust::incircle(a, b, c, d)
+    if let Some(det) = expansion::incircle_of_exact_differences(a, b, c, d) {
+        return det;
+    }
+    let coord = |p: [f64; 2]| robust::Coord { x: p[0], y: p[1] };
+    robust::incircle(coord(a), coord(b), coord(c), coord(d))
 }
 
 /// Shewchuk's in-circle determinant in floating point (rows `a`, `b`, `c` relative to `d`) and
