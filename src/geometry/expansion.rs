@@ -58,7 +58,8 @@ fn two_product(a: f64, b: f64) -> (f64, f64) {
 }
 
 /// Veltkamp's split of `a` into two halves of 26 significant bits each, `a = high + low`
-/// exactly (for `|a|` below 2⁹⁹⁶: the determinants' products overflow long before).
+/// exactly for `|a|` below 2⁹⁹⁶ (above, NaNs: [`incircle_in_double_double`] then decides
+/// nothing; the engine's frame keeps coordinates below 2¹⁰¹, `crate::scaling`).
 #[cfg(not(target_feature = "fma"))]
 #[inline(always)]
 fn split(a: f64) -> (f64, f64) {
@@ -194,7 +195,7 @@ pub fn incircle_of_exact_differences(
 }
 
 /// The error bound of [`incircle_in_double_double`] relative to the permanent: 128 u² (u = 2⁻⁵³,
-/// the unit roundoff), about twice what its steps can lose (~70 u², see there).
+/// the unit roundoff), about twice what its steps can lose (~72 u², see there).
 const DOUBLE_DOUBLE_ERRBOUND: f64 = 128.0 * (f64::EPSILON / 2.0) * (f64::EPSILON / 2.0);
 
 /// A coordinate difference `a − b` exactly, as the rounded difference and its rounding error
@@ -253,9 +254,16 @@ fn product_double_double(l: (f64, f64), m: (f64, f64)) -> (f64, f64) {
 /// Error: each lift within 21 u² L, each minor within 28 u² Q (L a row's lift, Q the sum of
 /// its minor's two products' magnitudes), each row's product within 8.1 u² L·Q of theirs, so
 /// within 57 u² L·Q of the exact row term; the three rows' high parts are summed exactly and
-/// the five small parts (at most 3.1 u of the permanent P = Σ L·Q) in doubles, losing at most
-/// 12.6 u² P; in all under 70 u² P. Underflow adds at most 2⁻¹⁰⁷⁴ per operation, nothing
-/// against 128 u² P for P ≥ 2⁻⁹⁰⁰, and below 2⁹⁰⁰ nothing overflows.
+/// the five small parts (at most 5 u of the permanent P = Σ L·Q) in doubles, losing at most
+/// 15 u² P; in all under 72 u² P (a review found 51 u² to first order, and 12 u² at most by
+/// search). Underflow: with every difference 0 or at least 2⁻⁴⁸⁰ (else `None`), the products of
+/// two differences are exact (multiples of 2⁻¹⁰⁶⁴ of at least 2⁻⁹⁶⁰) and the tails' products
+/// lose at most 2⁻¹¹⁵ of Q or L, nothing against u²; what underflows later is absolute, a few
+/// 2⁻¹⁰⁷⁴, against a bound of at least 2⁻⁹⁹⁹ for P ≥ 2⁻⁹⁰⁰. Without that guard, differences
+/// some 2⁻⁵⁰⁰ apart beside a far point gave wrong signs (the minors' rounding in the subnormal
+/// range, multiplied by the far point's lift). Below P = 2⁹⁰⁰ an overflow gives NaNs, rejected.
+/// Inside the engine every coordinate is a multiple of 2⁻²⁴⁰ ([`crate::scaling`]): the guard
+/// never refuses.
 pub fn incircle_in_double_double(
     a: [f64; 2],
     b: [f64; 2],
@@ -265,6 +273,12 @@ pub fn incircle_in_double_double(
     let (adx, ady) = (two_diff(a[0], d[0]), two_diff(a[1], d[1]));
     let (bdx, bdy) = (two_diff(b[0], d[0]), two_diff(b[1], d[1]));
     let (cdx, cdy) = (two_diff(c[0], d[0]), two_diff(c[1], d[1]));
+    // Differences far below the normal range's square root: their products' roundings would
+    // be absolute, not relative (see the error bound above).
+    let tiny = |(x, _): Difference| x != 0.0 && x.abs() < 2f64.powi(-480);
+    if [adx, ady, bdx, bdy, cdx, cdy].into_iter().any(tiny) {
+        return None;
+    }
     let (alift, blift, clift) = (lift(adx, ady), lift(bdx, bdy), lift(cdx, cdy));
     let bc = minor_double_double(bdx, cdy, cdx, bdy);
     let ca = minor_double_double(cdx, ady, adx, cdy);
@@ -401,6 +415,31 @@ mod tests {
             decided * 10 > tried * 8,
             "the stage decided only {decided} of {tried} near ties"
         );
+    }
+
+    #[test]
+    fn the_double_double_stage_leaves_differences_near_underflow_undecided() {
+        // A review's counterexample: three points some 2^-500 apart and a far one; the minors'
+        // roundings in the subnormal range, times the far point's lift, flipped the sign.
+        let h = |s: &str| -> f64 {
+            let (mantissa, exponent) = s.split_once('p').unwrap();
+            let negative = mantissa.starts_with('-');
+            let digits = mantissa.trim_start_matches('-').trim_start_matches("0x1.");
+            let bits = u64::from_str_radix(digits, 16).unwrap() as f64 / 2f64.powi(52);
+            let value = (1.0 + bits) * 2f64.powi(exponent.parse().unwrap());
+            if negative {
+                -value
+            } else {
+                value
+            }
+        };
+        let a = [h("0x1.0000000000000p200"), h("0x1.8000000000000p198")];
+        let b = [h("0x1.5eb561bd4f6b8p-501"), h("0x1.9a9a80ef2b725p-501")];
+        let c = [h("0x1.d9c278241a0a3p-502"), h("0x1.1555b7f6bc860p-501")];
+        let d = [h("-0x1.0c5300342457cp-561"), h("0x1.495efd10bdedap-555")];
+        // The exact determinant (rational arithmetic) is +5.0e-215; the stage, unguarded, gave
+        // -1.5e-203 (and `robust`, which underflows too, gives a negative sign as well).
+        assert_eq!(incircle_in_double_double(a, b, c, d), None);
     }
 
     #[test]
