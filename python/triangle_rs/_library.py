@@ -79,9 +79,6 @@ ProgressCallback = ctypes.CFUNCTYPE(None, ctypes.c_int, ctypes.c_int64, ctypes.c
 _IO_POINTER = ctypes.POINTER(CTriangulateIO)
 _byref = ctypes.byref
 
-#: The NULL callback: no per-call unsuitable test.
-_NO_UNSUITABLE = UnsuitableCallback()
-
 
 class Library:
     """A loaded triangle-rs library with the functions this package calls declared.
@@ -131,10 +128,23 @@ class Library:
         trifree.argtypes = [ctypes.c_void_p]
         trifree.restype = None
         self._reentrant = reentrant
+        # The same functions again, without `argtypes`, for the calls themselves: every argument
+        # is a pointer object (bytes, `byref`, None, a callback) that ctypes passes as it is, and
+        # the declared conversions cost ~1 µs a call, a third of a small triangulation's own time.
+        # The declarations above stay: they document the ABI and check any other caller.
+        self._reentrant_unchecked = self._unchecked("triangulate_reentrant")
+        self._progress_unchecked = self._unchecked("triangulate_progress") if self._progress is not None else None
         self._last_error = last_error
         self._trifree = trifree
         # `free` is `trifree` itself: one foreign call per array released, no Python frame.
         self.free = trifree
+
+    def _unchecked(self, name: str) -> "ctypes._CFuncPtr":
+        """A new function object for ``name`` (item access does not cache it, unlike attribute
+        access), returning a C int, with no ``argtypes``; it releases the GIL, as ``CDLL``'s do."""
+        function = self._cdll[name]
+        function.restype = ctypes.c_int
+        return function
 
     def triangulate(
         self,
@@ -160,14 +170,14 @@ class Library:
             _byref(tin),
             _byref(tout),
             _byref(vorout),
-            unsuitable if unsuitable is not None else _NO_UNSUITABLE,
+            unsuitable,  # None: NULL, no per-call test
             None,
             _byref(cancel),
         )
         if progress is None:
-            code = self._reentrant(*arguments)
+            code = self._reentrant_unchecked(*arguments)
         else:
-            code = self._progress(*arguments, progress)
+            code = self._progress_unchecked(*arguments, progress)
         if code == 0:
             text = self._last_warning() if self._last_warning is not None else None
             return 0, "", text.decode("utf-8", "replace") if text else ""
