@@ -65,6 +65,8 @@ INPUT_FIELDS = (
 )
 
 _INT32 = np.iinfo(np.int32)
+_INT32_DTYPE = np.dtype(np.int32)
+_INT64 = np.dtype(np.int64)
 _INT32_MAX = int(_INT32.max)
 
 
@@ -102,12 +104,18 @@ def normalize(name: str, value: Any) -> np.ndarray:
     source = value if type(value) is np.ndarray else np.asarray(value)
     if not source.size:
         return _EMPTY[name]
-    if source.dtype is not dtype:
-        array = _converted(name, source, dtype)
-    elif source.flags.c_contiguous:
-        array = source
+    source_dtype = source.dtype
+    if source_dtype is dtype:
+        array = source if source.flags.c_contiguous else np.ascontiguousarray(source)
+    elif source_dtype is _INT64 and dtype is _INT32_DTYPE and _SAME_VALUE_CASTS:
+        # A list of Python ints (indices, markers) becomes int64: the one checked cast that
+        # `_converted` ends with, without its tests, which cost as much again on every call.
+        try:
+            array = source.astype(dtype, order="C", casting="same_value")
+        except ValueError:
+            raise ValueError(f"{name} holds values outside the range of a 32-bit C int") from None
     else:
-        array = np.ascontiguousarray(source)
+        array = _converted(name, source, dtype)
     shape = array.shape
     ndim = len(shape)
     if width:
@@ -329,7 +337,6 @@ _INPUT_DEFAULTS = tuple(3 if name == "numberofcorners" else 0 for name, _ in CTr
 _ROW_COUNT_INDICES = tuple(
     _INDEX[name] for name in ("numberofpoints", "numberoftriangles", "numberofsegments", "numberofholes", "numberofregions")
 )
-_ROW_COUNTS = operator.itemgetter(*_ROW_COUNT_INDICES)
 
 #: Per input field: its pointer's index, its rows' count's index, whether it sets that count
 #: (the item lists) or must match it (the per-item lists), and the index of its width's count.
@@ -450,6 +457,7 @@ def input_struct(arrays: Mapping[str, np.ndarray]) -> CTriangulateIO:
     are checked in their order, which callers keep that of :data:`FIELDS`."""
     values = list(_INPUT_DEFAULTS)
     offset = _DATA_POINTER_OFFSET
+    too_many = False  # a count past a C int: refused once every array is checked, as before
     for name, array in arrays.items():
         known = _INPUTS.get(name)
         if known is None or not array.size:
@@ -458,6 +466,8 @@ def input_struct(arrays: Mapping[str, np.ndarray]) -> CTriangulateIO:
         rows = len(array)
         if sets_rows:
             values[rows_index] = rows
+            if rows > _INT32_MAX:
+                too_many = True
         elif rows != values[rows_index]:
             rows_name = FIELDS[name].rows
             raise ValueError(
@@ -468,7 +478,7 @@ def input_struct(arrays: Mapping[str, np.ndarray]) -> CTriangulateIO:
             values[columns_index] = array.shape[1]
         # `_address(array)`, inline: this runs for every input array of every call.
         values[pointer_index] = _read_pointer(id(array) + offset).value if offset is not None else array.ctypes.data
-    if max(_ROW_COUNTS(values)) > _INT32_MAX:
+    if too_many:  # a flag, not `max` over the counts: that costs a tenth of this function
         for index in _ROW_COUNT_INDICES:
             if values[index] > _INT32_MAX:
                 raise ValueError(f"{CTriangulateIO._fields_[index][0]} = {values[index]} does not fit a C int")
