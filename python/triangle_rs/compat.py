@@ -63,21 +63,27 @@ def _dict_arrays(tri: Mapping[str, Any]) -> dict[str, np.ndarray]:
     """The input dictionary's arrays, converted (field name -> array, in the order of ``FIELDS``,
     the keys given only): what ``TriangulateIO(**fields)`` would hold. An unknown key raises
     ``KeyError`` before anything is converted."""
-    # Plain loops, not comprehensions: each comprehension is one more function call, and this
-    # runs on every call.
-    fields = {}
-    last = -1
-    in_order = True
-    for key, value in tri.items():
-        name = KEYS[key]
-        fields[name] = value
-        position = _FIELD_ORDER[name]
-        in_order = in_order and position > last
-        last = position
+    keys = tuple(tri)
+    plan = _KEY_PLANS.get(keys) or _key_plan(keys)
     arrays = {}
-    for name in fields if in_order else sorted(fields, key=_FIELD_ORDER.__getitem__):
-        arrays[name] = normalize(name, fields[name])
+    for key, name in plan:  # a plain loop: a comprehension is one more function call
+        arrays[name] = normalize(name, tri[key])
     return arrays
+
+
+#: The keys of an input dictionary, in its order -> its (key, field name) pairs in the order of
+#: ``FIELDS``: checked and sorted once per process and order of keys, not on every call.
+_KEY_PLANS: dict[tuple[str, ...], tuple[tuple[str, str], ...]] = {}
+_KEY_PLANS_KEPT = 256
+
+
+def _key_plan(keys: tuple[str, ...]) -> tuple[tuple[str, str], ...]:
+    names = [KEYS[key] for key in keys]  # an unknown key raises KeyError
+    plan = tuple(sorted(zip(keys, names), key=lambda pair: _FIELD_ORDER[pair[1]]))
+    if len(_KEY_PLANS) >= _KEY_PLANS_KEPT:
+        _KEY_PLANS.clear()
+    _KEY_PLANS[keys] = plan
+    return plan
 
 
 def triangulate(
