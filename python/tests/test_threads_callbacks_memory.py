@@ -349,3 +349,6 @@ def test_the_foreign_call_releases_the_gil():
     library = load_library()
     assert isinstance(library._cdll, ctypes.CDLL) and not isinstance(library._cdll, ctypes.PyDLL)
     assert not library._reentrant._flags_ & ctypes._FUNCFLAG_PYTHONAPI
+    # The calls go through the same functions without argtypes: those must release it too.
+    for function in (library._reentrant_unchecked, library._progress_unchecked):
+        assert function is None or not function._flags_ & ctypes._FUNCFLAG_PYTHONAPI
