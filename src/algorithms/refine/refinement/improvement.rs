@@ -169,6 +169,7 @@ impl<P: Predicates> Refinement<'_, '_, P> {
     /// there) or after [`POLISH_STEPS`] triangles per 16 Steiner vertices (plus 16). A move
     /// never lowers an angle below the one it raised, and Lawson's flips after it never lower
     /// the smaller of two triangles' smallest angles, so the smallest angle only rises.
+    #[inline(never)]
     fn polish(&mut self, link: &mut Vec<(Point, Point, bool)>) {
         // Triangles below θ (those Triangle's rule excuses, or left by `Y`) are not polished,
         // and no move makes a triangle worse than the worst of those that meet θ.
@@ -248,6 +249,7 @@ impl<P: Predicates> Refinement<'_, '_, P> {
     /// Moves free vertex `w` where its star's smallest angle is larger (see [`Self::best_place`])
     /// if that raises it by [`GAIN`] to at least `floor` (sine squared). `link`: scratch space.
     /// Whether it moved.
+    #[inline(never)]
     fn try_smoothing(
         &mut self,
         w: VertexId,
@@ -425,6 +427,7 @@ impl<P: Predicates> Refinement<'_, '_, P> {
     /// Deletes free vertex `w` if the triangles that fill its star are good enough (smallest
     /// angle's sine squared at least `floor`, area bounds, user's test); else puts it back.
     /// Whether it stays deleted.
+    #[inline(never)]
     fn try_deleting(
         &mut self,
         w: VertexId,
@@ -491,6 +494,7 @@ impl<P: Predicates> Refinement<'_, '_, P> {
 
     /// [`Self::try_deleting`] of deletable `w`, whose link is `neighbours`; `made`: scratch
     /// space for the triangles a deletion makes.
+    #[inline(never)]
     fn try_deleting_around(
         &mut self,
         w: VertexId,
@@ -557,6 +561,7 @@ impl<P: Predicates> Refinement<'_, '_, P> {
     /// of the bad ones where their stars are better (as [`Self::try_smoothing`] would, without
     /// the floor), and whether every triangle around `neighbours` (the deleted vertex's link)
     /// and the moved vertices is good enough then. If not, the moved vertices go back.
+    #[inline(never)]
     fn smooth_after_deletion(
         &mut self,
         made: &[TriangleId],
@@ -641,6 +646,7 @@ impl<P: Predicates> Refinement<'_, '_, P> {
     /// Deletes vertex `w`, put on a segment by refinement, if the subsegment its two
     /// subsegments become is not encroached and the triangles that fill its star are good
     /// enough (as for [`Self::try_deleting`]); else puts it back. Whether it stays deleted.
+    #[inline(never)]
     fn try_unsplitting(&mut self, w: VertexId, floor: f64) -> bool {
         // Not with `Y`/`YY` (measured: on `la.poly` with `pqY`, merging subsegments of inner
         // segments lost an 88.3° input angle that Triangle keeps whole, for 2.5% fewer
@@ -651,7 +657,8 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         let Some([a, b]) = self.mesh().segment_neighbours(w) else {
             return false;
         };
-        if self.star_too_big_for_fewer(w, 1.0) {
+        if self.star_too_big_for_fewer(w, 1.0) || self.merged_subsegment_would_fail(w, a, b, floor)
+        {
             return false;
         }
         let Some(made) = self.cdt.delete_segment_vertex(w) else {
@@ -665,6 +672,65 @@ impl<P: Predicates> Refinement<'_, '_, P> {
         }
         let _ = self.cdt.insert_at(w, Location::OnEdge(e));
         self.cdt.settle(w);
+        false
+    }
+
+    /// Whether merging the subsegments `a`–`w` and `w`–`b` would leave, on a side of the
+    /// segment inside the domain, the triangle over `a`–`b` bad (below `floor`, over the area
+    /// bounds) or its apex encroaching `a`–`b`: that triangle's apex is the vertex of `w`'s
+    /// link on that side whose circle through `a` and `b` holds none of the others (the
+    /// constrained Delaunay triangulation of the side's polygon; flips across the polygon,
+    /// which could change it, are rare). Decided on the link alone, before the mesh is
+    /// touched: measured on Triangle's `la.poly` with `pq30`, nine merges in ten fail, most
+    /// there.
+    fn merged_subsegment_would_fail(
+        &self,
+        w: VertexId,
+        a: VertexId,
+        b: VertexId,
+        floor: f64,
+    ) -> bool {
+        let mesh = self.mesh();
+        let (pa, pb) = (mesh.point(a), mesh.point(b));
+        let mut candidates = [[0.0; 2]; 8];
+        // Each side: the link vertices met turning around `w` from one end of the segment to
+        // the other, left of the merged subsegment as seen from that first end.
+        for (from, to) in [(a, b), (b, a)] {
+            let Some(start) = mesh.star(w).find(|&e| mesh.dest(e) == from) else {
+                return false;
+            };
+            let t = start.triangle();
+            if mesh.is_ghost(t) || !inside(mesh, t) {
+                continue;
+            }
+            let mut count = 0;
+            for e in mesh.star_from(start).skip(1) {
+                let v = mesh.dest(e);
+                if v == to {
+                    break;
+                }
+                if v == GHOST || count == candidates.len() {
+                    return false; // not predicted
+                }
+                candidates[count] = mesh.point(v);
+                count += 1;
+            }
+            if count == 0 {
+                return false;
+            }
+            let (pu, pv) = (mesh.point(from), mesh.point(to));
+            let c = candidates[P::smallest_circle(pv, pu, &candidates[..count])];
+            let triangle = [pv, pu, c];
+            if P::orient2d(pv, pu, c) <= 0.0 {
+                return false;
+            }
+            if self.encroachment.encroaches(pa, pb, c)
+                || min_angle_sin2(triangle) < floor * (1.0 + MARGIN)
+                || self.too_big(t, triangle)
+            {
+                return true;
+            }
+        }
         false
     }
 
