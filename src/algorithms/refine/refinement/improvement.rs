@@ -21,7 +21,15 @@
 //!   subsegments become is not encroached ([`crate::mesh::Mesh::delete_segment_vertex`]; not
 //!   with `Y`/`YY`). Measured on Triangle's example files, the deletions that stand are about
 //!   half of those tried, and seven in eight of them need the moves; it is what makes the
-//!   meshes smaller than Triangle's (0.83× its triangles on geometric mean, 0.99× without);
+//!   meshes smaller than Triangle's (0.83× its triangles on geometric mean, 0.99× without).
+//!   What is sure to fail is not tried: a deletion whose star covers more than the area bound
+//!   times its triangles less two (some triangle of the fewer would be over it: on the
+//!   lecture's domain with `pq30a0.001`, 109 of 114 deletions tried failed, all with a triangle
+//!   over the bound), a merge of subsegments whose apex, read off the link, would make a bad
+//!   triangle or encroach (on `la.poly` with `pq30`, nine merges in ten failed). (Putting back
+//!   at once every deletion that leaves a triangle over the bound, without moves, saved another
+//!   15 % there, but the moves mend a few: the disk's `pqa` mesh of 100 triangles in the size
+//!   sweep went from 100 to 102, Triangle's 100.)
 //! - *smoothing*, once per free vertex left: to the centroid of its link or halfway there, if
 //!   that raises its star's smallest angle (Laplacian smoothing kept Delaunay: D. A. Field,
 //!   1988; accepted only where it helps, Freitag, Jones and Plassmann 1995) — for the mean
@@ -524,21 +532,9 @@ impl<P: Predicates> Refinement<'_, '_, P> {
                 }) && this.quality_around(neighbours, floor).no_worse_than(b)
             })
         };
-        // A triangle over the area bounds: moving the link's vertices rarely mends it (measured
-        // on the lecture domain with `pq30a0.001`: 5 of 114 deletions tried, every one of the
-        // 109 that failed had one), so the vertex goes back at once.
-        let over_area_bound = |this: &Self| {
-            let mesh = this.mesh();
-            made.iter().any(|&t| {
-                !mesh.is_ghost(t)
-                    && inside(mesh, t)
-                    && this.too_big(t, mesh.triangle(t).map(|v| mesh.point(v)))
-            })
-        };
         if made.iter().all(|&t| self.good_enough(t, floor))
             || no_worse(self)
-            || (!over_area_bound(self)
-                && self.smooth_after_deletion(made, neighbours, floor, link, search, before))
+            || self.smooth_after_deletion(made, neighbours, floor, link, search, before)
         {
             self.kinds[w.index()] = VertexKind::Deleted;
             return true;
