@@ -317,11 +317,14 @@ mod tests {
         }
     }
 
+    /// Uniform numbers in [0, 1] from `seed`.
+    fn uniform_from(mut state: u64) -> impl FnMut() -> f64 {
+        move || crate::algorithms::delaunay::order::splitmix64(&mut state) as f64 / u64::MAX as f64
+    }
+
     #[test]
     fn agrees_with_the_adaptive_predicate_on_ties_and_near_ties() {
-        let mut state = 11u64;
-        let mut uniform =
-            || crate::algorithms::delaunay::order::splitmix64(&mut state) as f64 / u64::MAX as f64;
+        let mut uniform = uniform_from(11u64);
         let (mut decided, mut ties) = (0, 0);
         for case in 0..40_000 {
             // Points near one another around a centre of any magnitude (their differences
@@ -376,9 +379,7 @@ mod tests {
         // Four points on a circle's arc (rounded: some u of the permanent from a tie), at any
         // magnitude and spread, the same points shifted by a tiny step along one axis, and
         // grid squares' corners.
-        let mut state = 38u64;
-        let mut uniform =
-            || crate::algorithms::delaunay::order::splitmix64(&mut state) as f64 / u64::MAX as f64;
+        let mut uniform = uniform_from(38u64);
         let (mut tried, mut decided) = (0, 0);
         for case in 0..40_000usize {
             let scale = 10f64.powi((case % 13) as i32 - 6);
