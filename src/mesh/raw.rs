@@ -177,6 +177,7 @@ impl Mesh {
             segment: Vec::new(),
             vertex_edge: Vec::new(),
             tag: Vec::new(),
+            relocations: 0,
         }
     }
 
