@@ -213,7 +213,6 @@ impl Mesh {
         let last = self.triangle_count() - 1;
         let (to, from) = (3 * t.index(), 3 * last as usize);
         if t.raw() != last {
-            self.relocations = self.relocations.wrapping_add(1);
             for k in 0..3 {
                 let corner = self.corners[from + k];
                 let twin = self.twins[from + k];

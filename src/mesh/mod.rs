@@ -61,10 +61,6 @@ pub struct Mesh {
     /// eaten triangles). Empty while not tracked. New triangles inherit the tag of the triangle
     /// they were split from; flips never cross segments, which bound the tagged parts.
     tag: Vec<u32>,
-    /// How many triangles [`Mesh::remove_slot`] has moved into another slot (wrapping): a
-    /// caller that keeps triangles by slot and corners knows, while it is unchanged, that a
-    /// triangle not in its slot is gone, not moved.
-    relocations: u32,
 }
 
 /// What [`Mesh::into_corners_and_points`] gives back: the corner array and the points.
@@ -91,18 +87,10 @@ impl Mesh {
             segment: Vec::new(),
             vertex_edge: Vec::new(),
             tag: Vec::new(),
-            relocations: 0,
         }
     }
 
     // ---- Sizes and iteration ----
-
-    /// The count of triangles moved from one slot into another so far (wrapping; see the
-    /// field).
-    #[inline(always)]
-    pub fn relocations(&self) -> u32 {
-        self.relocations
-    }
 
     /// Number of vertices (points), including any not yet connected.
     #[inline(always)]
@@ -427,7 +415,6 @@ impl Mesh {
             segment,
             vertex_edge,
             tag,
-            relocations: _,
         } = self;
         drop((twins, segment, vertex_edge, tag));
         MeshParts { corners, points }

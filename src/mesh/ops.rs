@@ -184,10 +184,8 @@ impl Mesh {
         }
         let tracks_segments = !old.segment.is_empty();
         let tracks_tags = !old.tag.is_empty();
-        // Every triangle may change slots: counted as a relocation (see `Mesh::relocations`).
         let mut mesh = Mesh {
             points: old.points.clone(),
-            relocations: old.relocations.wrapping_add(1),
             ..Mesh::default()
         };
         for t in 0..old.triangle_count() {

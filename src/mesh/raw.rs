@@ -177,7 +177,6 @@ impl Mesh {
             segment: Vec::new(),
             vertex_edge: Vec::new(),
             tag: Vec::new(),
-            relocations: 0,
         }
     }
 

@@ -14,8 +14,6 @@ pub(super) struct BadTriangle {
     pub(super) bucket: usize,
     pub(super) corners: [VertexId; 3],
     pub(super) slot: TriangleId,
-    /// The mesh's [`crate::mesh::Mesh::relocations`] when queued.
-    pub(super) relocations: u32,
 }
 
 /// Bad triangles in buckets (a bucket queue: constant time per operation, where a binary heap
@@ -33,7 +31,7 @@ pub(super) struct BadTriangle {
 /// again as long on a million triangles (more flips, longer walks and cavities).
 #[derive(Default)]
 pub(super) struct BadQueue {
-    buckets: Vec<VecDeque<([VertexId; 3], TriangleId, u32)>>,
+    buckets: Vec<VecDeque<([VertexId; 3], TriangleId)>>,
     /// No bucket above this one holds anything.
     top: usize,
 }
@@ -76,17 +74,16 @@ impl BadQueue {
     /// The bucket of the triangles bad only by their size.
     pub(super) const SIZE_BUCKET: usize = 0;
     pub(super) fn push(&mut self, bad: BadTriangle) {
-        self.buckets[bad.bucket].push_back((bad.corners, bad.slot, bad.relocations));
+        self.buckets[bad.bucket].push_back((bad.corners, bad.slot));
         self.top = self.top.max(bad.bucket);
     }
     pub(super) fn pop(&mut self) -> Option<BadTriangle> {
         loop {
-            if let Some((corners, slot, relocations)) = self.buckets[self.top].pop_front() {
+            if let Some((corners, slot)) = self.buckets[self.top].pop_front() {
                 return Some(BadTriangle {
                     bucket: self.top,
                     corners,
                     slot,
-                    relocations,
                 });
             }
             if self.top == 0 {
