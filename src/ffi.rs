@@ -35,6 +35,11 @@ thread_local! {
 }
 
 fn set_message(slot: &'static std::thread::LocalKey<RefCell<CString>>, message: &str) {
+    // The same text again (mostly none: every call clears the warning, and most have none)
+    // stays without an allocation and a free.
+    if slot.with(|slot| slot.borrow().as_bytes() == message.as_bytes()) {
+        return;
+    }
     let c = CString::new(message.replace('\0', " ")).unwrap_or_default();
     slot.with(|slot| *slot.borrow_mut() = c);
 }
