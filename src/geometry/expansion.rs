@@ -157,27 +157,29 @@ fn minor(p: f64, s: f64, q: f64, r: f64, out: &mut [f64; 4]) -> usize {
 }
 
 /// The sign of the in-circle determinant of `a`, `b`, `c`, `d` (positive when `d` lies inside
-/// the circle through the counter-clockwise `a`, `b`, `c`), exactly, as a double of that sign —
-/// or `None` when a coordinate difference `a − d`, `b − d`, `c − d` is not exact in double
-/// precision (then the general adaptive stages decide).
-pub fn incircle_of_exact_differences(
-    a: [f64; 2],
-    b: [f64; 2],
-    c: [f64; 2],
-    d: [f64; 2],
-) -> Option<f64> {
-    let mut differences = [0.0; 6];
-    for (k, (p, axis)) in [(a, 0), (a, 1), (b, 0), (b, 1), (c, 0), (c, 1)]
-        .into_iter()
-        .enumerate()
-    {
-        let (x, error) = two_diff(p[axis], d[axis]);
-        if error != 0.0 {
-            return None;
-        }
-        differences[k] = x;
+/// the circle through the counter-clockwise `a`, `b`, `c`), as a double of that sign, where the
+/// floating-point filter could not decide it: in double-double arithmetic where that decides
+/// ([`incircle_in_double_double`]: near ties), else exactly in expansions where the coordinate
+/// differences `a − d`, `b − d`, `c − d` are exact ([`incircle_of_exact_differences`]: ties);
+/// `None` otherwise (then the general adaptive stages decide).
+pub fn incircle(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> Option<f64> {
+    let differences = differences(a, b, c, d);
+    incircle_in_double_double(differences).or_else(|| incircle_of_exact_differences(differences))
+}
+
+/// The in-circle determinant's rows relative to `d`: `a − d`, `b − d`, `c − d`, each coordinate
+/// exactly, as its rounded difference and that rounding's error.
+fn differences(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> [Difference; 6] {
+    [(a, 0), (a, 1), (b, 0), (b, 1), (c, 0), (c, 1)].map(|(p, axis)| two_diff(p[axis], d[axis]))
+}
+
+/// The in-circle determinant's sign from its coordinate `differences`, exactly, as a double of
+/// that sign — or `None` when a difference is not exact in double precision.
+fn incircle_of_exact_differences(differences: [Difference; 6]) -> Option<f64> {
+    if differences.iter().any(|&(_, error)| error != 0.0) {
+        return None;
     }
-    let [adx, ady, bdx, bdy, cdx, cdy] = differences;
+    let [adx, ady, bdx, bdy, cdx, cdy] = differences.map(|(x, _)| x);
     let mut m = [0.0; 4];
     let (mut rows, mut lengths) = ([[0.0; 32]; 3], [0; 3]);
     let n = minor(bdx, cdy, cdx, bdy, &mut m);
@@ -241,9 +243,8 @@ fn product_double_double(l: (f64, f64), m: (f64, f64)) -> (f64, f64) {
     (p, p_error + (l.0 * m.1 + l.1 * m.0))
 }
 
-/// The sign of the in-circle determinant of `a`, `b`, `c`, `d` (as [`incircle_of_exact_differences`]),
-/// computed in double-double arithmetic from the exact coordinate differences, as a double of
-/// that sign when that decides it: `None` for a tie or a near tie within
+/// The sign of the in-circle determinant (as [`incircle`]) computed in double-double arithmetic
+/// from its exact coordinate `differences`, as a double of that sign when that decides it: `None` for a tie or a near tie within
 /// [`DOUBLE_DOUBLE_ERRBOUND`] of the permanent, or where the magnitudes leave the range this
 /// bound holds in (the exact stages decide then). A stage between the floating-point filter
 /// (error ~10 u of the permanent) and the exact ones, in the manner of Shewchuk's stage C (1997):
@@ -264,15 +265,8 @@ fn product_double_double(l: (f64, f64), m: (f64, f64)) -> (f64, f64) {
 /// range, multiplied by the far point's lift). Below P = 2⁹⁰⁰ an overflow gives NaNs, rejected.
 /// Inside the engine every coordinate is a multiple of 2⁻²⁴⁰ ([`crate::scaling`]): the guard
 /// never refuses.
-pub fn incircle_in_double_double(
-    a: [f64; 2],
-    b: [f64; 2],
-    c: [f64; 2],
-    d: [f64; 2],
-) -> Option<f64> {
-    let (adx, ady) = (two_diff(a[0], d[0]), two_diff(a[1], d[1]));
-    let (bdx, bdy) = (two_diff(b[0], d[0]), two_diff(b[1], d[1]));
-    let (cdx, cdy) = (two_diff(c[0], d[0]), two_diff(c[1], d[1]));
+fn incircle_in_double_double(differences: [Difference; 6]) -> Option<f64> {
+    let [adx, ady, bdx, bdy, cdx, cdy] = differences;
     // Differences far below the normal range's square root: their products' roundings would
     // be absolute, not relative (see the error bound above).
     let tiny = |(x, _): Difference| x != 0.0 && x.abs() < 2f64.powi(-480);
@@ -353,7 +347,7 @@ mod tests {
                 })
                 .collect();
             let [a, b, c, d] = [points[0], points[1], points[2], points[3]];
-            if let Some(det) = incircle_of_exact_differences(a, b, c, d) {
+            if let Some(det) = incircle_of_exact_differences(differences(a, b, c, d)) {
                 decided += 1;
                 let distinct = (0..4).all(|i| (0..i).all(|j| points[i] != points[j]));
                 ties += usize::from(det == 0.0 && distinct);
@@ -403,7 +397,7 @@ mod tests {
             }
             let [a, b, c, d] = points;
             tried += 1;
-            if let Some(det) = incircle_in_double_double(a, b, c, d) {
+            if let Some(det) = incircle_in_double_double(differences(a, b, c, d)) {
                 decided += 1;
                 assert_eq!(
                     sign(det),
@@ -440,7 +434,7 @@ mod tests {
         let d = [h("-0x1.0c5300342457cp-561"), h("0x1.495efd10bdedap-555")];
         // The exact determinant (rational arithmetic) is +5.0e-215; the stage, unguarded, gave
         // -1.5e-203 (and `robust`, which underflows too, gives a negative sign as well).
-        assert_eq!(incircle_in_double_double(a, b, c, d), None);
+        assert_eq!(incircle_in_double_double(differences(a, b, c, d)), None);
     }
 
     #[test]

@@ -387,15 +387,8 @@ fn exact_incircle(
         return det.signum() as f64;
     }
     let point = |p: robust::Coord<f64>| [p.x, p.y];
-    let (a, b, c, d) = (point(a), point(b), point(c), point(d));
-    if let Some(det) = expansion::incircle_in_double_double(a, b, c, d) {
-        return det;
-    }
-    if let Some(det) = expansion::incircle_of_exact_differences(a, b, c, d) {
-        return det;
-    }
-    let coord = |p: [f64; 2]| robust::Coord { x: p[0], y: p[1] };
-    robust::incircle(coord(a), coord(b), coord(c), coord(d))
+    expansion::incircle(point(a), point(b), point(c), point(d))
+        .unwrap_or_else(|| robust::incircle(a, b, c, d))
 }
 
 /// Shewchuk's in-circle determinant in floating point (rows `a`, `b`, `c` relative to `d`) and

@@ -196,8 +196,8 @@ fn split_of(points: &[Point]) -> Split {
 }
 
 /// Triangulates with two threads; gives the points back when the split does not give two proper
-/// halves (too few points, or a half with all points collinear): the caller then triangulates
-/// sequentially.
+/// halves (too few points, or a half with all points collinear) or the merge passes its flip
+/// budget (`POINTS_PER_MERGE_FLIP`): the caller then triangulates sequentially.
 pub fn triangulate_two_halves<P: Predicates>(
     points: Vec<Point>,
 ) -> Result<Triangulation, Vec<Point>> {

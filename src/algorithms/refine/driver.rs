@@ -7,7 +7,7 @@ use super::polling::Polling;
 use super::queue::QueueOrder;
 use super::refinement::{Refinement, RunEnd, Settings};
 use super::report::{Report, Warning};
-use super::{inside, worst_triangle, Quality, VertexKind, GUARANTEED_ANGLE};
+use super::{area_bound, inside, worst_triangle, Quality, VertexKind, GUARANTEED_ANGLE};
 use crate::algorithms::constrain::Constrainer;
 use crate::algorithms::domain::Domain;
 use crate::geometry::Predicates;
@@ -449,20 +449,8 @@ fn size_estimate<P: Predicates>(mesh: &Mesh, domain: &Domain, quality: &Quality<
         .map(|t| {
             let [a, b, c] = mesh.triangle(t).map(|v| mesh.point(v));
             let area = 0.5 * P::orient2d(a, b, c);
-            let regional = if quality.variable_area {
-                domain
-                    .max_area
-                    .get(mesh.tag(t) as usize)
-                    .copied()
-                    .filter(|&m| m > 0.0)
-            } else {
-                None
-            };
-            match (quality.max_area, regional) {
-                (Some(m), Some(r)) => area / m.min(r),
-                (Some(m), None) | (None, Some(m)) => area / m,
-                (None, None) => 0.0,
-            }
+            area_bound(quality.max_area, quality.variable_area, domain, mesh.tag(t))
+                .map_or(0.0, |bound| area / bound)
         })
         .sum();
     (4.0 * triangles).min(1e12) as u64

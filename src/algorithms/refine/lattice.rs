@@ -27,6 +27,7 @@
 //! rasterized the same way). The point is inserted only if the walk finds it in a triangle of
 //! that tag, so a rasterization rounded the wrong way costs a point, never the domain.
 
+use super::area_bound;
 use super::refinement::{Refinement, Seeded};
 use crate::algorithms::domain::Domain;
 use crate::geometry::{Point, Predicates};
@@ -81,20 +82,7 @@ pub(super) fn seed_lattices<P: Predicates>(
         return;
     }
     let bound_of = |tag: u32| {
-        let regional = if variable_area {
-            domain
-                .max_area
-                .get(tag as usize)
-                .copied()
-                .filter(|&m| m > 0.0)
-        } else {
-            None
-        };
-        match (global, regional) {
-            (Some(g), Some(r)) => Some(g.min(r)),
-            (g, r) => g.or(r),
-        }
-        .filter(|b| b.is_finite() && *b > 0.0)
+        area_bound(global, variable_area, domain, tag).filter(|b| b.is_finite() && *b > 0.0)
     };
     // The distinct bounds, and per tag which one applies (a mesh given with `r` has a tag per
     // triangle: one lattice for them all under a global bound).

@@ -20,6 +20,7 @@
 //! far above the floating-point resolution of the domain, skips (and reports) a triangle or
 //! segment it cannot split, and stops at the Steiner-point budget (`S`) or when cancelled.
 
+use crate::algorithms::domain::Domain;
 use crate::data::{ProgressFn, UnsuitableFn};
 use crate::geometry::{min_angle_sin2, Grid};
 use crate::mesh::{Mesh, TriangleId, VertexId, OUTSIDE};
@@ -109,6 +110,24 @@ enum VertexKind {
     Seed,
     /// A free vertex deleted (in no triangle); dropped from the numbering when refinement ends.
     Deleted,
+}
+
+/// The area bound of the domain's triangles tagged `tag`: the global one (`a<x>`, `global`) or
+/// their region's (`a`, where `variable_area`; a positive one), the smaller where both apply.
+fn area_bound(global: Option<f64>, variable_area: bool, domain: &Domain, tag: u32) -> Option<f64> {
+    let regional = if variable_area {
+        domain
+            .max_area
+            .get(tag as usize)
+            .copied()
+            .filter(|&m| m > 0.0)
+    } else {
+        None
+    };
+    match (global, regional) {
+        (Some(g), Some(r)) => Some(g.min(r)),
+        (g, r) => g.or(r),
+    }
 }
 
 /// Whether triangle `t` belongs to the domain (refinement works on the domain alone; the

@@ -19,7 +19,7 @@ use super::walk::{walk, Walk};
 mod improvement; // `Refinement::improve`: decimation, smoothing and polish of the finished mesh
 mod sliding; // `Refinement::try_sliding`: a vertex on a segment moved along it
 mod subsegments; // encroached subsegments and their splits
-use super::{inside, Quality, VertexKind};
+use super::{area_bound, inside, Quality, VertexKind};
 use crate::algorithms::constrain::Constrainer;
 use crate::algorithms::delaunay::Location;
 use crate::algorithms::domain::Domain;
@@ -412,23 +412,24 @@ impl<'r, 'q, P: Predicates> Refinement<'r, 'q, P> {
         self.too_big_by_bounds(t, points)
     }
 
+    /// The area bound of triangle `t` (global or its region's, the smaller), if any.
+    pub(super) fn area_bound(&self, t: TriangleId) -> Option<f64> {
+        let quality = self.settings.quality;
+        let tag = self.mesh().tag(t);
+        area_bound(
+            quality.max_area,
+            quality.variable_area,
+            self.settings.domain,
+            tag,
+        )
+    }
+
     /// [`Self::too_big`] where there are area bounds or a user's test.
     #[inline(never)]
     fn too_big_by_bounds(&self, t: TriangleId, [pa, pb, pc]: [Point; 3]) -> bool {
         let quality = self.settings.quality;
         let area = 0.5 * P::orient2d(pa, pb, pc);
-        let regional = if quality.variable_area {
-            self.settings
-                .domain
-                .max_area
-                .get(self.mesh().tag(t) as usize)
-                .copied()
-                .unwrap_or(-1.0)
-        } else {
-            -1.0
-        };
-        quality.max_area.is_some_and(|m| area > m)
-            || (regional > 0.0 && area > regional)
+        self.area_bound(t).is_some_and(|bound| area > bound)
             || quality
                 .user_test
                 .is_some_and(|f| f(pa[0], pa[1], pb[0], pb[1], pc[0], pc[1], area))

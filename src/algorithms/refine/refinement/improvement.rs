@@ -466,22 +466,12 @@ impl<P: Predicates> Refinement<'_, '_, P> {
     /// after a deletion (2 fewer inside, 1 fewer on a segment) is over the bound, and the
     /// deletion would fail (tested before deleting, which costs ten times this).
     fn star_too_big_for_fewer(&self, w: VertexId, fewer: f64) -> bool {
-        let quality = self.settings.quality;
         let mesh = self.mesh();
         let Some(first) = mesh.vertex_edge(w) else {
             return false;
         };
-        let regional = if quality.variable_area {
-            let tag = mesh.tag(first.triangle()) as usize;
-            let bounds = &self.settings.domain.max_area;
-            bounds.get(tag).copied().filter(|&m| m > 0.0)
-        } else {
-            None
-        };
-        let bound = match (quality.max_area, regional) {
-            (Some(m), Some(r)) => m.min(r),
-            (Some(m), None) | (None, Some(m)) => m,
-            (None, None) => return false,
+        let Some(bound) = self.area_bound(first.triangle()) else {
+            return false;
         };
         let pw = mesh.point(w);
         let tag = mesh.tracks_tags().then(|| mesh.tag(first.triangle()));
