@@ -30,7 +30,9 @@
 //! size the geometric mean and worst time ratio, the count ratio and the radius ratios.
 //!
 //! Run with `cargo bench --bench refine` (`REPS=…` for more or fewer repetitions of the speed
-//! benchmarks; a full run takes about 15 minutes). `REFINE_TABLE=only` runs the table alone,
+//! benchmarks; a full run takes about 15 minutes). `REFINE_EXTRA=R` appends our switch `R` (the
+//! improvement of the finished mesh; Triangle ignores the letter) to every call of the table and
+//! the sweep: the other end of issue 36's frontier. `REFINE_TABLE=only` runs the table alone,
 //! `REFINE_TABLE=smoke` the table on `face.poly` with `pq30` and `pqY` alone, `REFINE_TABLE=skip`
 //! skips the table; `REFINE_SWEEP=only` runs the sweep alone, `REFINE_SWEEP=skip` skips it. Under
 //! `cargo test --all-targets` it runs as a smoke test (a coarser area bound, a 200-vertex star,
@@ -98,6 +100,12 @@ pub fn measure(pslg: &Pslg, switches: &str, who: &str, out: &Triangulation) -> M
         smallest_angle: smallest_angle(&mesh),
         radius_ratio: mean_radius_ratio(&mesh),
     }
+}
+
+/// The switches the table and the sweep append to each of their sets (`REFINE_EXTRA`: `R`, or
+/// nothing).
+pub fn extra_switches() -> String {
+    std::env::var("REFINE_EXTRA").unwrap_or_default()
 }
 
 fn bench(pslg: &Pslg, switches: &str, reps: usize) {

@@ -722,10 +722,10 @@ fn above_30_degrees_refinement_does_not_cascade_where_triangles_does_not() {
 
 /// With `Y`/`YY`, a bad triangle that only a vertex on a segment kept whole could mend stays
 /// (a point that would encroach such a segment does not go in), as in Triangle, and the
-/// improvement may delete a vertex where the triangles around it are no worse. Ours must be
-/// valid, no larger than Triangle's, and leave no more triangles below θ than Triangle's
-/// (issue 24: `la.poly` with `pqYY` made 1.08× Triangle's triangles, `double_hex3.poly` with
-/// `pqY` 1.17×).
+/// improvement (`R`) may delete a vertex where the triangles around it are no worse. Ours must
+/// be valid and leave no more triangles below θ than Triangle's; with `R` also no larger than
+/// Triangle's (issue 24: `la.poly` with `pqYY` made 1.08× Triangle's triangles,
+/// `double_hex3.poly` with `pqY` 1.17×), by default within [`Y_COUNT_RATIO`] of it.
 #[test]
 fn with_y_bad_triangles_stay_as_in_triangle_and_no_more() {
     let triangle = reference_or_fail();
@@ -746,7 +746,7 @@ fn with_y_bad_triangles_stay_as_in_triangle_and_no_more() {
         "face.poly",
         "double_hex.poly",
     ] {
-        for switches in ["pqY", "pqYY"] {
+        for switches in ["pqY", "pqYY", "pqYR", "pqYYR"] {
             let (example, theirs, ours) = both_on_file(&files, name, switches, triangle);
             let context = format!("{name}, \"{switches}zQ\"");
             check_output(&example, switches, "Triangle's", &theirs);
@@ -756,7 +756,12 @@ fn with_y_bad_triangles_stay_as_in_triangle_and_no_more() {
             let (o, t) = (ours.triangles.len(), theirs.triangles.len());
             let (ob, tb) = (below(&ours, 20.0), below(&theirs, 20.0));
             println!("{context}: {o} triangles, {ob} below 20° (Triangle {t}, {tb})");
-            assert!(o <= t, "{context}: {o} triangles, Triangle {t}");
+            let most = if switches.ends_with('R') {
+                t as f64
+            } else {
+                Y_COUNT_RATIO * t as f64
+            };
+            assert!(o as f64 <= most, "{context}: {o} triangles, Triangle {t}");
             assert!(
                 ob <= tb,
                 "{context}: {ob} triangles below 20°, Triangle's {tb}"
@@ -765,10 +770,15 @@ fn with_y_bad_triangles_stay_as_in_triangle_and_no_more() {
     }
 }
 
+/// With `Y`/`YY` and without `R`, our count may be at most this factor of Triangle's (the
+/// order of work decides a few vertices of these small meshes: `double_hex3.poly` with `pqY`
+/// has 26 triangles, Triangle's 24).
+const Y_COUNT_RATIO: f64 = 1.1;
+
 /// How far below Triangle's our polished mesh's smallest angle may be (degrees).
 const POLISHED_ANGLE_SLACK: f64 = 0.5;
 
-/// Decimation keeps the mesh's smallest angle, and the polish after it raises it where moving
+/// With `R`, decimation keeps the mesh's smallest angle, and the polish after it raises it where moving
 /// the worst triangle's corners can (issue 36: one bounded pass; the whole-mesh rounds and the
 /// raise that lifted the smallest angle past Triangle's on every case cost four times the
 /// time). Ours must be valid and no larger than Triangle's, and its smallest angle at most
@@ -792,6 +802,7 @@ fn improved_meshes_keep_triangles_smallest_angle_with_no_more_triangles() {
         ("square_circle_hole.poly", "pq30a0.03125"),
     ];
     for (name, switches) in cases {
+        let switches = &format!("{switches}R");
         let (example, theirs, ours) = both_on_file(&files, name, switches, triangle);
         let context = format!("{name}, \"{switches}zQ\"");
         let t = check_output(&example, switches, "Triangle's", &theirs);

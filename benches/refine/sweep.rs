@@ -354,7 +354,7 @@ impl Case {
             Knob::Area => format!("{}{}", self.switches, decimal(value)),
             _ => self.switches.to_string(),
         };
-        (pslg, switches)
+        (pslg, switches + &super::extra_switches())
     }
 }
 

@@ -88,8 +88,9 @@ struct Row {
 
 /// The switch sets (without `z` and `Q`) of `file`'s kind.
 fn switch_sets(file: &ExampleFile) -> Vec<String> {
+    let extra = super::extra_switches();
     let list = |s: &[&str]| s.iter().map(|s| s.to_string()).collect::<Vec<_>>();
-    match file.kind {
+    let sets = match file.kind {
         Kind::Points => list(&["q", "q30", "q33", "q34"]),
         Kind::Poly => {
             let mut sets = list(&["pq", "pq30", "pq33", "pq34", "pqY", "pqYY", "pqD"]);
@@ -98,7 +99,8 @@ fn switch_sets(file: &ExampleFile) -> Vec<String> {
         }
         Kind::Mesh { .. } if file.input.segments.is_empty() => list(&["rq30", "rq34"]),
         Kind::Mesh { .. } => list(&["rpq30", "rpq34", "rq34"]),
-    }
+    };
+    sets.into_iter().map(|s| s + &extra).collect()
 }
 
 /// The largest power of two ≤ 1/1000 of the bounding box area of `points`, printed exactly in

@@ -377,6 +377,7 @@ fn run<P: Predicates>(
                 },
                 no_steiner_on_segments: options.no_steiner_on_segments,
                 max_steiner: options.max_steiner,
+                reduce: options.reduce,
                 // Per-triangle bounds (`r` with `a`) vary from triangle to triangle: no lattice.
                 area_lattice: !(options.refine && options.variable_area),
                 cancel: hooks.cancel,

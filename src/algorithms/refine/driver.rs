@@ -99,8 +99,8 @@ pub fn refine<P: Predicates>(
             driver.run_within(None)
         }
     };
-    // The finished mesh is improved (decimated and polished: see `Driver::improve` for when
-    // not), in the frame it was refined in.
+    // With `R` the finished mesh is improved (decimated and polished: see `Driver::improve` for
+    // when not), in the frame it was refined in.
     if outcome == Outcome::Finished {
         outcome = driver.improve();
     }
@@ -299,17 +299,21 @@ impl<P: Predicates> Driver<'_, '_, P> {
         outcome
     }
 
-    /// Decimates and polishes the finished mesh ([`Refinement::improve`]) and refines again
+    /// With `R` (not by default: measured on the refinement benchmark, it takes 2–4× the time of
+    /// the refinement for 0.65–0.86× its triangles, where the time is what Triangle's users
+    /// wait for; issue 36's frontier in README.md), decimates and polishes the finished mesh
+    /// ([`Refinement::improve`]) and refines again
     /// what that left bad (rarely anything: a tie among cocircular vertices when a vertex is
     /// put back, an area bound after flips, a subsegment that a moved vertex encroaches). Up to
     /// [`GUARDED_IMPROVEMENT`] triangles, the mesh before stands if the one after has more
     /// triangles or an angle below θ or below the smallest the mesh had (with `Y`, new points
     /// may go where refinement had left bad triangles whole). Finished, or cancelled.
     fn improve(&mut self) -> Outcome {
-        // Not under `S` (which counts insertions), nor with the user's test (which would be
+        // Only when asked. Not under `S` (which counts insertions), nor with the user's test (which would be
         // asked about every triangle tried: slow where it is a script's callback, and it may
         // answer by a state of its own, as Triangle's callers' tests may).
-        if self.quality.max_steiner.is_some()
+        if !self.quality.reduce
+            || self.quality.max_steiner.is_some()
             || self.quality.user_test.is_some()
             || !self.refinement.worth_improving()
         {

@@ -63,6 +63,9 @@ pub struct Quality<'a> {
     pub no_steiner_on_segments: u8,
     /// `S`: the Steiner-point budget.
     pub max_steiner: Option<u64>,
+    /// `R`: the finished mesh is reduced (decimated and polished: fewer triangles for a few
+    /// times the time; see `refinement::improvement`).
+    pub reduce: bool,
     /// Whether the interior may first be seeded with lattice points where a fixed area bound
     /// governs (global or regional `a`; not for per-triangle bounds of a mesh given with `r`,
     /// and never with the user's test or an `S` budget).
