@@ -103,10 +103,9 @@ mod tests {
         let twice = [0, 1, 2, 2, 1, 0];
         for tris in [&three[..], &twice[..]] {
             match reconstruct::<Exact>(points.clone(), tris, 3, 0) {
-                Err(Error::InvalidMesh(message)) => assert!(
-                    message.contains("more than two triangles"),
-                    "{message}"
-                ),
+                Err(Error::InvalidMesh(message)) => {
+                    assert!(message.contains("more than two triangles"), "{message}")
+                }
                 other => panic!("{tris:?}: {:?}", other.map(|m| m.triangle_count())),
             }
         }

@@ -325,15 +325,23 @@ impl<P: Predicates> Constrainer<P> {
     /// After inserting a vertex at a rounded position (a crossing, a midpoint), which may lie
     /// off the edge it split by an ulp: the edges around it are made locally Delaunay too (Lawson
     /// checks only the edges opposite a new vertex, which suffices only for exact positions).
+    ///
+    /// Refinement settles every vertex it puts on a segment: the spokes go on the Lawson stack
+    /// with their half-edges as hints (found again without a turn around the vertex), in the
+    /// constrainer's reused stack.
     pub fn settle(&mut self, vertex: VertexId) {
+        let mut stack = std::mem::take(&mut self.scratch.lawson);
+        stack.clear();
         let mesh = self.inserter.mesh();
-        let edges = mesh
-            .star(vertex)
-            .map(|e| mesh.dest(e))
-            .filter(|&w| w != GHOST)
-            .map(|w| (vertex, w))
-            .collect();
-        self.restore_delaunay(edges);
+        stack.extend(
+            mesh.star(vertex)
+                .map(|e| (vertex, mesh.dest(e), e))
+                .filter(|&(_, w, _)| w != GHOST),
+        );
+        self.inserter
+            .mesh_mut()
+            .legalize::<P, _>(&mut stack, &mut BetweenSegments::default());
+        self.scratch.lawson = stack;
     }
 
     /// `s`: inserts the midpoint of `a`–`b` as a vertex (recorded with the crossings, for its
