@@ -110,7 +110,7 @@ mod tests {
             }
         }
         // Two triangles sharing an edge: linked across it.
-        let mut mesh = reconstruct::<Exact>(points, &three[..6], 3, 0).unwrap();
+        let mesh = reconstruct::<Exact>(points, &three[..6], 3, 0).unwrap();
         mesh.check_topology().unwrap();
         assert_eq!(mesh.triangles().filter(|&t| !mesh.is_ghost(t)).count(), 2);
     }
