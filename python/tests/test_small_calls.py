@@ -183,10 +183,42 @@ def worker_threads():
     return [thread for thread in threading.enumerate() if thread.name.startswith("triangle_rs-")]
 
 
+#: A refinement not predicted small (its area bound asks for 10^4 triangles of the unit square).
+LONG = "pq30a0.0001"
+
+
 def test_refining_calls_share_one_worker_thread():
     for _ in range(3):
-        triangle_rs.triangulate(LECTURE, "pq30")
+        triangle_rs.triangulate(LECTURE, LONG)
     assert [thread.name for thread in worker_threads()] == ["triangle_rs-worker"]
+
+
+def test_refinements_predicted_small_run_on_the_calling_thread(monkeypatch):
+    """A refinement of few points with no area bound, or one that the bounding box holds few
+    times, runs on the calling thread (the worker's hand-off costs more than it takes); one with
+    a Python test (`u`), regional bounds, a mesh to refine, or a fine bound goes to the worker."""
+    seen = []
+    real = core._ForeignCall
+
+    class Watched(real):
+        def __init__(self, call):
+            seen.append(True)
+            super().__init__(call)
+
+    monkeypatch.setattr(core, "_ForeignCall", Watched)
+    for switches in ("pq30", "pq30a0.01", "pqD", "pq34"):
+        assert len(triangle_rs.triangulate(LECTURE, switches)["triangles"]) > 0
+    assert seen == []
+    triangle_rs.triangulate(LECTURE, LONG)
+    assert seen == [True]
+    triangle_rs.triangulate(LECTURE, "pq30u", unsuitable=lambda *_: False)
+    assert seen == [True, True]
+    regions = dict(LECTURE, regions=[[0.5, 0.5, 1, 0.01]])
+    triangle_rs.triangulate(regions, "pq30a")
+    assert seen == [True, True, True]
+    many = {"vertices": np.random.default_rng(3).random((core._SHORT_REFINEMENT_POINTS + 1, 2))}
+    triangle_rs.triangulate(many, "q30")
+    assert seen == [True, True, True, True]
 
 
 class CallingAgainLibrary:
@@ -217,11 +249,11 @@ def test_a_refining_call_made_while_the_worker_is_busy_gets_a_thread_of_its_own(
     library = CallingAgainLibrary(core.load_library())
 
     def handler(_number, _frame):
-        library.inner = triangle_rs.triangulate(LECTURE, "pq30")  # the real library, not the stand-in
+        library.inner = triangle_rs.triangulate(LECTURE, LONG)  # the real library, not the stand-in
 
     previous = signal.signal(signal.SIGUSR1, handler)
     try:
-        out, _ = core.run("Qzpq30", TriangulateIO(pointlist=LECTURE["vertices"], segmentlist=LECTURE["segments"]), library=library)
+        out, _ = core.run("Qz" + LONG, TriangulateIO(pointlist=LECTURE["vertices"], segmentlist=LECTURE["segments"]), library=library)
     finally:
         signal.signal(signal.SIGUSR1, previous)
     assert isinstance(library.inner, dict) and len(library.inner["triangles"]) == out.numberoftriangles
@@ -229,15 +261,15 @@ def test_a_refining_call_made_while_the_worker_is_busy_gets_a_thread_of_its_own(
 
 @pytest.mark.skipif(not hasattr(os, "fork"), reason="os.fork")
 def test_a_forked_child_starts_its_own_worker():
-    triangle_rs.triangulate(LECTURE, "pq30")  # the parent's worker exists
+    triangle_rs.triangulate(LECTURE, LONG)  # the parent's worker exists
     script = (
         "import os, sys\n"
         "import triangle_rs\n"
         "LECTURE = %r\n"
-        "expected = len(triangle_rs.triangulate(LECTURE, 'pq30')['triangles'])\n"
+        "expected = len(triangle_rs.triangulate(LECTURE, 'pq30a0.0001')['triangles'])\n"
         "pid = os.fork()\n"
         "if pid == 0:\n"
-        "    os._exit(0 if len(triangle_rs.triangulate(LECTURE, 'pq30')['triangles']) == expected else 1)\n"
+        "    os._exit(0 if len(triangle_rs.triangulate(LECTURE, 'pq30a0.0001')['triangles']) == expected else 1)\n"
         "_, status = os.waitpid(pid, 0)\n"
         "sys.exit(os.waitstatus_to_exitcode(status))\n"
     ) % (LECTURE,)

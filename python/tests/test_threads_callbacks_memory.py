@@ -95,6 +95,9 @@ def test_error_messages_are_per_thread():
 # --- the unsuitable callback (switch u) ----------------------------------------------------------
 
 SQUARE_POINTS = np.array([[0, 0], [1, 0], [1, 1], [0, 1], [0.3, 0.6]], dtype=float)
+#: Switches for a refinement of them not predicted small (see `core._predicted_small`): it goes to
+#: the worker thread, as a long one must for Ctrl-C.
+LONG_REFINEMENT = "Qqa1e-9"
 
 
 def test_unsuitable_callback_is_honoured():
@@ -212,10 +215,11 @@ class StallingLibrary:
 
 
 def test_keyboard_interrupt_sets_the_cancel_flag_and_is_re_raised(sigint_raises_keyboard_interrupt):
-    # `q` refines: such calls run in a worker thread so that Ctrl-C reaches the library.
+    # `q` refines, and the area bound asks for 10^9 triangles: the call is not predicted small
+    # and runs in a worker thread so that Ctrl-C reaches the library.
     library = StallingLibrary()
     with pytest.raises(KeyboardInterrupt):
-        run("Qq", TriangulateIO(pointlist=SQUARE_POINTS), library=library)
+        run(LONG_REFINEMENT, TriangulateIO(pointlist=SQUARE_POINTS), library=library)
     assert library.saw_cancel
 
 
@@ -259,7 +263,7 @@ def test_any_exception_while_waiting_cancels_and_is_raised_after_the_library_ret
     previous = signal.signal(signal.SIGUSR1, handler)
     try:
         with pytest.raises(raised):
-            run("Qq", TriangulateIO(pointlist=SQUARE_POINTS), library=library)
+            run(LONG_REFINEMENT, TriangulateIO(pointlist=SQUARE_POINTS), library=library)
     finally:
         signal.signal(signal.SIGUSR1, previous)
     assert library.saw_cancel and library.returned

@@ -5,8 +5,10 @@ Ctrl-C)."""
 from __future__ import annotations
 
 import ctypes
+import math
 import os
 import queue
+import re
 import signal
 import sys
 import threading
@@ -45,11 +47,22 @@ Progress = Callable[[str, int, int], None]
 PHASES = ("delaunay", "segments", "refinement", "output")
 
 # Running a call in the worker thread that makes it interruptible costs tens of microseconds
-# (handing it over and waking the waiting thread), more than a small triangulation takes. So only
-# calls that can run long use it: those that refine (the library polls the cancel flag while
-# refining) and those with large inputs.
+# (handing it over and waking the waiting thread), more than a small triangulation takes: the
+# lecture's 5-vertex domain with `pq30` took 101 µs through it, 16.5 µs in the library. So only
+# calls that can run long use it: those with large inputs, and refining calls (the library polls
+# the cancel flag while refining) unless they are predicted small: at most
+# `_SHORT_REFINEMENT_POINTS` input points, no user test (`u`, a Python callback) or regional or
+# per-triangle bounds (`a` without a number), no mesh to refine (`r`), and a global area bound,
+# if any, that the input's bounding box holds at most `_SHORT_REFINEMENT_TRIANGLES` times. Such a
+# call takes about a millisecond or less; Ctrl-C during one is handled when it returns. (A
+# misprediction, say a sliver-thin domain whose refinement the library stops as a runaway, waits
+# at most as long as that limit's million vertices take, about a second.)
 _REFINING_SWITCHES = frozenset("qauDL")
 _LARGE_INPUT_POINTS = 50_000
+_SHORT_REFINEMENT_POINTS = 512
+_SHORT_REFINEMENT_TRIANGLES = 4096
+# `a` and the number after it, as the library reads it (digits, a point, an exponent).
+_AREA_SWITCH = re.compile(r"a((?:\d+\.?\d*|\.\d+)(?:e[-+]?\d+)?)?")
 
 # How often the waiting main thread wakes up to let Python run its signal handlers (Ctrl-C) while
 # the library works in another thread. A signal that the kernel delivers to the main thread wakes
@@ -166,15 +179,26 @@ def run_arrays(
 
 
 #: switches -> (what the library gets, whether the call may run long): per process, not per call.
-_PARSED_SWITCHES: dict[str, tuple[bytes, bool]] = {}
+_PARSED_SWITCHES: dict[str, tuple[bytes, bool, "float | None"]] = {}
 _PARSED_SWITCHES_KEPT = 256
 
 
-def _parse_switches(switches: str) -> tuple[bytes, bool]:
+def _parse_switches(switches: str) -> tuple[bytes, bool, "float | None"]:
+    """The encoded switches, whether they refine, and for a refinement that may be predicted
+    small (see `_SHORT_REFINEMENT_POINTS`) its global area bound (``inf`` for none), else None."""
     parsed = _PARSED_SWITCHES.get(switches)
     if parsed is None:
         encoded = encode_switches(switches if "Q" in switches else "Q" + switches)
-        parsed = (encoded, bool(_REFINING_SWITCHES.intersection(switches)))
+        refines = bool(_REFINING_SWITCHES.intersection(switches))
+        bound: "float | None" = None
+        if refines and "u" not in switches and "r" not in switches:
+            bound = math.inf
+            for match in _AREA_SWITCH.finditer(switches):
+                if match.group(1) is None:
+                    bound = None  # regional bounds: no prediction
+                    break
+                bound = min(bound, float(match.group(1)))
+        parsed = (encoded, refines, bound)
         if len(_PARSED_SWITCHES) >= _PARSED_SWITCHES_KEPT:
             _PARSED_SWITCHES.clear()
         _PARSED_SWITCHES[switches] = parsed
@@ -193,7 +217,7 @@ def _call(
     name -> array, the fields present, by default) and the warning lines (one text). ``tio`` is a
     ``TriangulateIO`` or its input arrays (as for :func:`run_arrays`). Every array the library
     allocated is released, read or not."""
-    encoded, refines = _PARSED_SWITCHES.get(switches) or _parse_switches(switches)
+    encoded, refines, bound = _PARSED_SWITCHES.get(switches) or _parse_switches(switches)
     arrays = input_arrays(tio) if isinstance(tio, TriangulateIO) else tio
     c_in = input_struct(arrays)  # points into `arrays`, which this frame keeps alive
     c_out, c_vorout = CTriangulateIO(), CTriangulateIO()
@@ -221,7 +245,12 @@ def _call(
     c_progress = _wrap_progress(report, cancel, callback_errors) if report is not None else None
 
     points = arrays.get("pointlist")
-    may_run_long = refines or (points is not None and len(points) >= _LARGE_INPUT_POINTS)
+    if points is not None and len(points) >= _LARGE_INPUT_POINTS:
+        may_run_long = True
+    else:
+        may_run_long = refines and not (
+            unsuitable is None and not progress and _predicted_small(bound, points)
+        )
     foreign: Optional[_ForeignCall] = None
     try:
         if may_run_long:
@@ -244,6 +273,20 @@ def _call(
         # `run_interruptibly` returns or raises only once the library is done with the structs.
         if foreign is None or foreign.finished():
             release_outputs(lib.free, c_out, c_vorout)
+
+
+def _predicted_small(bound: "float | None", points: "np.ndarray | None") -> bool:
+    """Whether a refinement whose switches give ``bound`` (see :func:`_parse_switches`) of
+    ``points`` is predicted small (see `_SHORT_REFINEMENT_POINTS`)."""
+    if bound is None or points is None or len(points) > _SHORT_REFINEMENT_POINTS:
+        return False
+    if math.isinf(bound) or len(points) == 0:
+        return True
+    # The square on the coordinates' whole range holds the bounding box. In Python's own min and
+    # max over at most 1024 numbers: numpy's reductions cost some 4 µs each whatever the size.
+    values = points.reshape(-1).tolist()
+    extent = max(values) - min(values)
+    return extent * extent <= _SHORT_REFINEMENT_TRIANGLES * bound
 
 
 def _outputs(

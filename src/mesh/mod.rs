@@ -361,6 +361,25 @@ impl Mesh {
 
     // ---- Vertices ----
 
+    /// Makes room for `vertices` more vertices and the two triangles each adds, in every array
+    /// the mesh keeps (refinement, which adds them one at a time, would otherwise regrow each
+    /// array some log₂(growth) times: 4 % of a 250-triangle quality mesh's instructions).
+    pub fn reserve_vertices(&mut self, vertices: usize) {
+        let half_edges = 6 * vertices;
+        self.points.reserve(vertices);
+        self.corners.reserve(half_edges);
+        self.twins.reserve(half_edges);
+        if !self.segment.is_empty() {
+            self.segment.reserve(half_edges);
+        }
+        if !self.vertex_edge.is_empty() {
+            self.vertex_edge.reserve(vertices);
+        }
+        if !self.tag.is_empty() {
+            self.tag.reserve(2 * vertices);
+        }
+    }
+
     /// Adds a vertex (not yet connected to the mesh); returns its id.
     pub fn add_point(&mut self, p: Point) -> VertexId {
         self.points.push(p);

@@ -53,12 +53,22 @@ pub fn refine<P: Predicates>(
     // Without the user's own test or budget: a run that makes far more vertices than the input
     // and the area bounds account for is stopped (an input a hair's breadth wide, such as nearly
     // collinear points with `c`, needs about length/width triangles: billions).
+    let area_estimate = size_estimate::<P>(mesh, domain, quality);
     let runaway_limit = (quality.user_test.is_none() && quality.max_steiner.is_none()).then(|| {
-        let expected = RUNAWAY_PER_TRIANGLE * inside_triangle_count(mesh)
-            + size_estimate::<P>(mesh, domain, quality);
+        let expected = RUNAWAY_PER_TRIANGLE * inside_triangle_count(mesh) + area_estimate;
         expected.max(RUNAWAY_MINIMUM)
     });
-    let kinds = vec![VertexKind::Input; mesh.points().len()];
+    // Room for about the vertices refinement will add: an eighth of the area estimate (its
+    // triangles of the bound, times four, where the lattice puts one vertex per two of them),
+    // and twice as many as the input has (the meshes of the refinement benchmark's angle-only
+    // rows add 0.6–4 per input vertex), at most 2^22 (the arrays then grow as usual).
+    let vertices = mesh.points().len();
+    let room = (area_estimate / 8)
+        .saturating_add(2 * vertices as u64 + 64)
+        .min(1 << 22) as usize;
+    let mut kinds = Vec::with_capacity(vertices + room);
+    kinds.resize(vertices, VertexKind::Input);
+    cdt.mesh_mut().reserve_vertices(room);
     cdt.snap_vertices_onto_segments(snap2);
     domain.merge_equal_regions(cdt.mesh_mut());
     let settings = Settings {
