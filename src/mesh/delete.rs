@@ -138,15 +138,37 @@ impl Mesh {
             .find_edge(a, b)
             .expect("the merged triangle")
             .triangle();
-        self.restore_hole::<P>(start, link, stack, flipped, made);
+        // The stack holds every diagonal of the hole (each planned flip made one): the polygon's
+        // edges, Delaunay before, stay so (the triangles that fill a deleted vertex's star are
+        // the constrained Delaunay triangulation of its link; nothing outside changes).
+        self.restore_hole::<P>(start, link, stack, flipped, made, false);
         debug_assert!(made.len() >= link.len() - 2);
+        #[cfg(debug_assertions)]
+        {
+            // Every edge of the filled hole is locally Delaunay already: Lawson flips nothing.
+            let mut all: Vec<_> = made
+                .iter()
+                .flat_map(|t| t.edges())
+                .map(|e| (self.origin(e), self.dest(e), e))
+                .filter(|&(x, y, _)| x != GHOST && y != GHOST)
+                .collect();
+            let mut check = BetweenSegments {
+                record: true,
+                flipped: Vec::new(),
+            };
+            self.legalize::<P, _>(&mut all, &mut check);
+            debug_assert!(
+                check.flipped.is_empty(),
+                "a deletion left a non-Delaunay edge"
+            );
+        }
         true
     }
 
-    /// After a vertex is taken out: Lawson flips, segments fixed, from `stack` and from the
-    /// edges of the triangles inside its old link `link` (found from triangle `start`, see
-    /// [`Self::hole`]). Puts in `made` (empty) those triangles and the ones flips made,
-    /// without repeats; `flipped`: scratch space.
+    /// After a vertex is taken out: Lawson flips, segments fixed, from `stack` and, with
+    /// `stack_hole_edges`, from the edges of the triangles inside its old link `link` (found
+    /// from triangle `start`, see [`Self::hole`]). Puts in `made` (empty) those triangles and
+    /// the ones flips made, without repeats; `flipped`: scratch space.
     pub(super) fn restore_hole<P: Predicates>(
         &mut self,
         start: TriangleId,
@@ -154,15 +176,18 @@ impl Mesh {
         stack: &mut Vec<(VertexId, VertexId, EdgeId)>,
         flipped: &mut Vec<TriangleId>,
         made: &mut Vec<TriangleId>,
+        stack_hole_edges: bool,
     ) {
         self.hole(start, link, made);
-        for &t in made.iter() {
-            stack.extend(
-                t.edges()
-                    .into_iter()
-                    .map(|e| (self.origin(e), self.dest(e), e))
-                    .filter(|&(x, y, _)| x != GHOST && y != GHOST),
-            );
+        if stack_hole_edges {
+            for &t in made.iter() {
+                stack.extend(
+                    t.edges()
+                        .into_iter()
+                        .map(|e| (self.origin(e), self.dest(e), e))
+                        .filter(|&(x, y, _)| x != GHOST && y != GHOST),
+                );
+            }
         }
         flipped.clear();
         let mut lawson = BetweenSegments {

@@ -138,7 +138,7 @@ impl Mesh {
             .expect("the merged subsegment")
             .triangle();
         let mut made = Vec::new();
-        self.restore_hole::<P>(start, &link, &mut stack, &mut Vec::new(), &mut made);
+        self.restore_hole::<P>(start, &link, &mut stack, &mut Vec::new(), &mut made, true);
         Some(made)
     }
 }
