@@ -100,16 +100,24 @@ fn strictly_inside(pu: Point, pv: Point, w: Point) -> bool {
 }
 
 /// Whether the edge from `p` to `q` meets the open disk (with a little slack: a walk that goes
-/// one triangle too far only looks at more vertices, each tested exactly as above).
+/// one triangle too far only looks at more vertices, each tested exactly as above). The
+/// squared distance from the centre to the edge, times the edge's squared length, against the
+/// radius squared times the same: no division.
 fn meets_disk(p: Point, q: Point, centre: Point, radius2: f64) -> bool {
     let d = [q[0] - p[0], q[1] - p[1]];
+    let c = [centre[0] - p[0], centre[1] - p[1]];
+    let along = c[0] * d[0] + c[1] * d[1];
+    let to_p = c[0] * c[0] + c[1] * c[1];
+    let slack = radius2 * (1.0 + 1e-9);
+    if along <= 0.0 {
+        return to_p < slack; // nearest to p
+    }
     let length2 = d[0] * d[0] + d[1] * d[1];
-    let along = if length2 > 0.0 {
-        (((centre[0] - p[0]) * d[0] + (centre[1] - p[1]) * d[1]) / length2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let nearest = [p[0] + along * d[0], p[1] + along * d[1]];
-    let distance2 = (centre[0] - nearest[0]).powi(2) + (centre[1] - nearest[1]).powi(2);
-    distance2 < radius2 * (1.0 + 1e-9)
+    if along >= length2 {
+        let to_q = (centre[0] - q[0]).powi(2) + (centre[1] - q[1]).powi(2);
+        return to_q < slack; // nearest to q
+    }
+    // |c|²·|d|² − (c·d)² = (c × d)², the squared distance times |d|².
+    let cross = c[0] * d[1] - c[1] * d[0];
+    cross * cross < slack * length2
 }
