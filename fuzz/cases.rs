@@ -54,7 +54,7 @@ impl<'a> Bytes<'a> {
 /// exact arithmetic an invalid mesh is allowed), `V` (prints), `w`/`W` (refused; tested apart).
 const TOKENS: &[&str] = &[
     "p", "p", "p", "c", "q", "q30", "q10", "a", "A", "D", "Y", "YY", "S7", "e", "n", "v", "z", "z",
-    "j", "o2", "s", "C", "i", "F", "q33", "AREA",
+    "j", "o2", "s", "C", "i", "F", "q33", "AREA", "R",
 ];
 
 /// How coordinates are drawn: a coarse lattice (duplicates, collinear and cocircular sets), the

@@ -31,6 +31,11 @@ fn deleted_vertices_leave_the_numbering_compact() {
         ("double_hex3.poly", "pq30"),
         ("face.poly", "pq30"),
         ("la.poly", "pq30"),
+        // With the improvement (our `R`): vertices deleted and moved by it too.
+        ("A.poly", "pq30R"),
+        ("face.poly", "pq30R"),
+        ("la.poly", "pq30R"),
+        ("dots.node", "q30R"),
     ];
     for (name, switches) in cases {
         let file = example_named(&files, name);

@@ -62,7 +62,9 @@ pub fn reconstruct<P: Predicates>(
     for v in 0..n as usize {
         first[v + 1] += first[v];
     }
-    // Per vertex, its outgoing edges with their destinations.
+    // Per vertex, its outgoing edges with their destinations, sorted (by destination, then
+    // edge): a twin is a binary search, and copies of an edge are neighbours (a scan of the
+    // list was quadratic in the degree: a fan of 160 000 triangles took 8.7 s).
     let mut out = vec![(VertexId::new(0), EdgeId::new(0)); edges as usize];
     let mut next = first.clone();
     for e in (0..edges).map(EdgeId::new) {
@@ -70,18 +72,29 @@ pub fn reconstruct<P: Predicates>(
         out[*slot as usize] = (mesh.dest(e), e);
         *slot += 1;
     }
+    for v in 0..n as usize {
+        out[first[v] as usize..first[v + 1] as usize].sort_unstable();
+    }
     let out_of = |v: VertexId| &out[first[v.index()] as usize..first[v.index() + 1] as usize];
     for e in (0..edges).map(EdgeId::new) {
         let (a, b) = (mesh.origin(e), mesh.dest(e));
-        if out_of(a).iter().filter(|&&(d, _)| d == b).count() > 1 {
+        // The first edge, in order, with an earlier copy is the error (as a map of the pairs
+        // would find it).
+        let from_a = out_of(a);
+        let earlier_copy = from_a
+            .binary_search(&(b, e))
+            .is_ok_and(|i| i > 0 && from_a[i - 1].0 == b);
+        if earlier_copy {
             return Err(Error::InvalidMesh(format!(
                 "the edge from vertex {} to vertex {} belongs to more than two triangles (or two triangles overlap)",
                 a.raw() as i64 + base as i64,
                 b.raw() as i64 + base as i64
             )));
         }
-        if let Some(&(_, f)) = out_of(b).iter().find(|&&(d, _)| d == a) {
-            if f > e {
+        let from_b = out_of(b);
+        let i = from_b.partition_point(|&(d, _)| d < a);
+        if let Some(&(d, f)) = from_b.get(i) {
+            if d == a && f > e {
                 mesh.link(e, f);
             }
         }

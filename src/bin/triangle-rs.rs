@@ -46,6 +46,7 @@ usage: triangle-rs [-prq__a__uAcDjevngBPNEIOXzo_YS__iFlsCQVh] input_file [--svg 
     -o2 Second-order triangles (six nodes).
     -Y  No new vertices on boundary segments (YY: on any segment).
     -S  Maximum number of added Steiner points (the number after S).
+    -R  Reduce the quality mesh after refinement: fewer triangles, more time (ours).
     -i  Incremental Delaunay construction.
     -F  Sweepline Delaunay construction.
     -l  Vertical cuts only (divide and conquer).
@@ -124,6 +125,10 @@ SWITCHES
         edges opposite its corners 1, 2 and 3.
     -Y  Add no vertices on boundary segments (YY: on any segment).
     -S  Add at most this many Steiner vertices (S alone: none).
+    -R  (Not Triangle's.) Reduce a quality mesh after refinement: delete each vertex that
+        refinement placed where its neighbours, moved a little, can do without it, then smooth
+        and polish: 0.65-0.86 times Triangle's triangles (about 1.0 without), for two to four
+        times the time. Triangle ignores the letter.
     -i, -F, -l  Choose how the Delaunay triangulation is built; the triangles are the same.
     -s  Recover segments by splitting them instead of by flipping.
     -C  Check the consistency of the final mesh.

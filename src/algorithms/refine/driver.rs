@@ -61,12 +61,16 @@ pub fn refine<P: Predicates>(
     // Room for about the vertices refinement will add: an eighth of the area estimate (its
     // triangles of the bound, times four, where the lattice puts one vertex per two of them),
     // and twice as many as the input has (the meshes of the refinement benchmark's angle-only
-    // rows add 0.6–4 per input vertex), at most 2^22 (the arrays then grow as usual).
+    // rows add 0.6–4 per input vertex); never more than `S` or the runaway limit allow, nor
+    // 2^22 (the arrays then grow as usual), and only where the memory is there.
     let vertices = mesh.points().len();
     let room = (area_estimate / 8)
         .saturating_add(2 * vertices as u64 + 64)
+        .min(quality.max_steiner.unwrap_or(u64::MAX))
+        .min(runaway_limit.unwrap_or(u64::MAX))
         .min(1 << 22) as usize;
-    let mut kinds = Vec::with_capacity(vertices + room);
+    let mut kinds = Vec::new();
+    let _ = kinds.try_reserve(vertices + room);
     kinds.resize(vertices, VertexKind::Input);
     cdt.mesh_mut().reserve_vertices(room);
     cdt.snap_vertices_onto_segments(snap2);
