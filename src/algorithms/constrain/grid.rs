@@ -86,8 +86,7 @@ impl<P: Predicates> Constrainer<P> {
     /// [`Self::move_vertex`], which checks the kernel only with `CHECK`.
     #[inline(always)]
     fn shift_vertex<const CHECK: bool>(&mut self, v: VertexId, p: Point) -> bool {
-        let mut edges = std::mem::take(&mut self.scratch.lawson);
-        edges.clear();
+        let mut edges = self.take_lawson_stack();
         let mesh = self.inserter.mesh();
         for e in mesh.star(v) {
             let (a, b) = (mesh.dest(e), mesh.apex(e));
@@ -102,10 +101,7 @@ impl<P: Predicates> Constrainer<P> {
             edges.push((a, b, e.next()));
         }
         self.inserter.mesh_mut().move_point(v, p);
-        self.inserter
-            .mesh_mut()
-            .legalize::<P, _>(&mut edges, &mut BetweenSegments::default());
-        self.scratch.lawson = edges;
+        self.legalize_stack(edges);
         true
     }
 

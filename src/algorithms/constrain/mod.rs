@@ -330,14 +330,27 @@ impl<P: Predicates> Constrainer<P> {
     /// with their half-edges as hints (found again without a turn around the vertex), in the
     /// constrainer's reused stack.
     pub fn settle(&mut self, vertex: VertexId) {
-        let mut stack = std::mem::take(&mut self.scratch.lawson);
-        stack.clear();
+        let mut stack = self.take_lawson_stack();
         let mesh = self.inserter.mesh();
         stack.extend(
             mesh.star(vertex)
                 .map(|e| (vertex, mesh.dest(e), e))
                 .filter(|&(_, w, _)| w != GHOST),
         );
+        self.legalize_stack(stack);
+    }
+
+    /// The constrainer's reused Lawson stack, empty (give it back through
+    /// [`Self::legalize_stack`]).
+    fn take_lawson_stack(&mut self) -> Vec<(VertexId, VertexId, EdgeId)> {
+        let mut stack = std::mem::take(&mut self.scratch.lawson);
+        stack.clear();
+        stack
+    }
+
+    /// Lawson flips, segments fixed, from the entries of `stack` (vertex pairs with a half-edge
+    /// as a hint, or [`EdgeId::NONE`]); the stack goes back to the constrainer for reuse.
+    fn legalize_stack(&mut self, mut stack: Vec<(VertexId, VertexId, EdgeId)>) {
         self.inserter
             .mesh_mut()
             .legalize::<P, _>(&mut stack, &mut BetweenSegments::default());
@@ -478,13 +491,9 @@ impl<P: Predicates> Constrainer<P> {
 
     /// Lawson flips from the given edges until every non-segment edge is locally Delaunay.
     pub fn restore_delaunay(&mut self, edges: Vec<(VertexId, VertexId)>) {
-        let mut stack: Vec<_> = edges
-            .into_iter()
-            .map(|(u, v)| (u, v, EdgeId::NONE))
-            .collect();
-        self.inserter
-            .mesh_mut()
-            .legalize::<P, _>(&mut stack, &mut BetweenSegments::default());
+        let mut stack = self.take_lawson_stack();
+        stack.extend(edges.into_iter().map(|(u, v)| (u, v, EdgeId::NONE)));
+        self.legalize_stack(stack);
     }
 
     /// Marks every hull edge that is not a segment yet as a segment with marker `marker` (the `c`
